@@ -1,0 +1,112 @@
+# One non-recursive build for the whole project. Each folder describes its
+# libraries, programs and tests in a module.mk; this file turns them into
+# rules for every build variant, out of tree under build/<variant>/.
+#
+#   make               everything for the host (build/host)
+#   make test          every test, under ASan + UBSan (build/host-sanitize)
+#   make cross-check   the portable layers with 16- and 32-bit cross compilers
+#   make run           the main job
+#   make format        clang-format every source file
+
+.DEFAULT_GOAL := all
+SHELL := /bin/bash
+MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 2)
+BUILD ?= build
+
+CC := gcc
+CXX := g++
+
+WARNINGS := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wundef
+C_STANDARD := -std=gnu99
+CXX_STANDARD := -std=c++20
+INCLUDES := -I. -Ivm -Inative_functions
+
+# Build variants: the plain host build, and the one the tests run in.
+VARIANTS := host host-sanitize
+host_FLAGS := -O2 -g
+host-sanitize_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all \
+                       -fno-omit-frame-pointer
+
+LIBRARIES :=
+PROGRAMS :=
+TESTS :=
+
+include $(sort $(wildcard */module.mk */*/module.mk))
+
+# --- dependencies from Debian, installed once by the project's script ------
+DEPS_STAMP := $(BUILD)/.deps-installed
+$(DEPS_STAMP): scripts/install-deps.sh
+	@scripts/install-deps.sh
+	@mkdir -p $(@D) && touch $@
+
+# --- per-variant rules -----------------------------------------------------
+# $(1) = variant. Objects mirror the source tree under build/<variant>/obj.
+define VARIANT_RULES
+$(BUILD)/$(1)/obj/%.o: %.c | $(DEPS_STAMP)
+	@mkdir -p $$(@D)
+	$$(CC) $(C_STANDARD) $(WARNINGS) $$($(1)_FLAGS) $$(INCLUDES) $$(EXTRA_CFLAGS_$$*) -MMD -MP -c $$< -o $$@
+
+$(BUILD)/$(1)/obj/%.o: %.cpp | $(DEPS_STAMP)
+	@mkdir -p $$(@D)
+	$$(CXX) $(CXX_STANDARD) $(WARNINGS) $$($(1)_FLAGS) $$(INCLUDES) $$(EXTRA_CFLAGS_$$*) -MMD -MP -c $$< -o $$@
+endef
+$(foreach v,$(VARIANTS),$(eval $(call VARIANT_RULES,$(v))))
+
+objects = $(patsubst %,$(BUILD)/$(1)/obj/%.o,$(basename $(2)))
+
+# $(1) = variant, $(2) = library name: build/<variant>/lib/lib<name>.a
+define LIBRARY_RULES
+$(BUILD)/$(1)/lib/lib$(2).a: $(call objects,$(1),$($(2)_SOURCES))
+	@mkdir -p $$(@D)
+	@rm -f $$@
+	ar rcs $$@ $$^
+endef
+
+# $(1) = variant, $(2) = program, $(3) = output folder (bin or tests).
+# A program lists its own sources, the project libraries it uses (in link
+# order) and any system libraries.
+define PROGRAM_RULES
+$(BUILD)/$(1)/$(3)/$(2): $(call objects,$(1),$($(2)_SOURCES)) \
+                         $(foreach l,$($(2)_LIBS),$(BUILD)/$(1)/lib/lib$(l).a)
+	@mkdir -p $$(@D)
+	$$(CXX) $$($(1)_FLAGS) $$^ $$($(2)_LDLIBS) -o $$@
+endef
+
+$(foreach v,$(VARIANTS),$(foreach l,$(LIBRARIES),$(eval $(call LIBRARY_RULES,$(v),$(l)))))
+$(foreach v,$(VARIANTS),$(foreach p,$(PROGRAMS),$(eval $(call PROGRAM_RULES,$(v),$(p),bin))))
+$(foreach v,$(VARIANTS),$(foreach t,$(TESTS),$(eval $(call PROGRAM_RULES,$(v),$(t),tests))))
+
+ALL_SOURCES := $(sort $(foreach x,$(LIBRARIES) $(PROGRAMS) $(TESTS),$($(x)_SOURCES)))
+-include $(patsubst %.o,%.d,$(foreach v,$(VARIANTS),$(call objects,$(v),$(ALL_SOURCES))))
+
+# --- top-level targets -----------------------------------------------------
+HOST_OUTPUTS = $(foreach l,$(LIBRARIES),$(BUILD)/host/lib/lib$(l).a) \
+               $(foreach p,$(PROGRAMS),$(BUILD)/host/bin/$(p)) \
+               $(foreach t,$(TESTS),$(BUILD)/host/tests/$(t))
+TEST_BINARIES = $(foreach t,$(TESTS),$(BUILD)/host-sanitize/tests/$(t))
+
+.PHONY: all test tests cross-check run format clean deps
+all: $(HOST_OUTPUTS)
+
+tests: $(TEST_BINARIES)
+
+test: $(TEST_BINARIES)
+	@scripts/run-tests.sh $(TEST_BINARIES)
+
+deps:
+	@scripts/install-deps.sh
+
+# The portable layers must build warning-free where `int` is 16 bits (the
+# dsPIC's case, here avr-gcc) and on a 32-bit microcontroller.
+PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c)
+cross-check: | $(DEPS_STAMP)
+	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
+
+run: all
+	@scripts/run-main-job.sh $(BUILD)/host
+
+format:
+	clang-format -i $$(git ls-files '*.c' '*.h' '*.cpp' '*.hpp')
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian packages the project needs, and nothing when they are
+# all present. Used by `make` and by CI; safe to run again at any time.
+set -euo pipefail
+
+packages=(
+    make g++ gcc                                   # host build
+    libgtest-dev                                   # tests
+    clang libclang-rt-14-dev                       # fuzzing (libFuzzer) and sanitizers
+    gcc-avr avr-libc binutils-avr                  # cross-check: 16-bit int
+    gcc-arm-none-eabi libnewlib-arm-none-eabi      # cross-check: Cortex-M
+    aseba libdashel-dev locales                    # the reference implementation (tests only)
+    valgrind                                       # instruction counts in benchmarks
+    python3                                        # test and benchmark scripts
+)
+
+missing=()
+for package in "${packages[@]}"; do
+    status=$(dpkg-query -W -f='${db:Status-Status}' "$package" 2>/dev/null || true)
+    [ "$status" = installed ] || missing+=("$package")
+done
+
+as_root() {
+    if [ "$(id -u)" = 0 ]; then "$@"; else sudo "$@"; fi
+}
+
+if [ ${#missing[@]} -gt 0 ]; then
+    echo "install-deps: installing ${missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    as_root apt-get update -q
+    as_root apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# The reference compiler refuses to start without this locale.
+if ! locale -a 2>/dev/null | grep -qi '^en_US\.utf-\?8$'; then
+    echo "install-deps: generating the en_US.UTF-8 locale"
+    as_root localedef -i en_US -f UTF-8 en_US.UTF-8
+fi

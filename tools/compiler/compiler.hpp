@@ -1,0 +1,48 @@
+// The Aseba compiler: source text to protocol-5 bytecode for one target,
+// bit-identical to the reference compiler for every program it accepts.
+
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "target.hpp"
+
+namespace aseba {
+
+// 1-based line and column (in characters) of the source text.
+struct SourcePosition {
+    unsigned line = 0;
+    unsigned column = 0;
+};
+
+struct CompileError {
+    bool has_position = false; // a few errors (stack overflow) have none
+    SourcePosition position;
+    std::string message;
+};
+
+// A user variable as allocated by the compiler (named variables come first).
+struct VariableInfo {
+    std::string name;
+    uint16_t address = 0;
+    uint16_t size = 0;
+};
+
+struct CompileResult {
+    bool ok = false;
+    std::vector<uint16_t> bytecode;       // event table then code
+    std::vector<unsigned> line_of_word;   // source line of each bytecode word
+    std::vector<VariableInfo> variables;  // user variables in address order
+    uint16_t allocated_variables = 0;     // named + user words, temporaries excluded
+    CompileError error;                   // when !ok
+};
+
+// Compiles `source` (UTF-8) for `target` with the project's `definitions`.
+// Never throws on bad input: errors come back in the result.
+CompileResult compile(std::string_view source, const TargetDescription &target,
+                      const CommonDefinitions &definitions);
+
+} // namespace aseba

@@ -1,0 +1,169 @@
+// The Aseba virtual machine: runs protocol-5 bytecode in memory that the
+// caller owns, reports to the node through callbacks, never touches hardware.
+//
+// One struct holds the whole state; there are no globals and no allocation,
+// so a host process can run hundreds of robots side by side. Every access the
+// bytecode makes is checked: a faulty program stops its event and is reported,
+// the VM stays usable.
+
+#ifndef VM_H
+#define VM_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "vm_config.h"
+
+// Execution flags (bytecode.md §6), also sent as they are in
+// EXECUTION_STATE_CHANGED messages.
+#define VM_FLAG_EVENT_ACTIVE  0x0001 // a handler is executing: pc is valid
+#define VM_FLAG_STEP_BY_STEP  0x0002 // paused, or stopped after an error
+#define VM_FLAG_EVENT_RUNNING 0x0004 // inside vm_run
+
+// Protocol limits that are part of the bytecode's contract, not tunables.
+#define VM_MAX_BREAKPOINTS   16  // the wire protocol's table size
+#define VM_MAX_EVENT_WORDS   258 // largest payload of one emitted event
+#define VM_NAMED_SOURCE      1   // address of `source`, set on each event
+#define VM_NAMED_ARGS        2   // address of `args`, filled from event payloads
+#define VM_NODE_ERROR_LENGTH 255 // longest NODE_SPECIFIC_ERROR text
+
+typedef struct vm_state vm_state;
+
+// What the VM tells the node. Each callback receives the `context` given at
+// vm_init. Payloads are those of protocol.md §5.
+typedef struct vm_callbacks {
+    // EMIT: a user event with `count` words, to every other node and host.
+    void (*emit)(void *context, uint16_t event, const int16_t *payload, uint16_t count);
+    // EXECUTION_STATE_CHANGED(pc, flags).
+    void (*execution_state_changed)(void *context, uint16_t pc, uint16_t flags);
+    // EVENT_EXECUTION_KILLED(pc): a new event abandoned the running handler.
+    void (*event_killed)(void *context, uint16_t pc);
+    // ARRAY_ACCESS_OUT_OF_BOUNDS(pc, size, index); the VM is stopped.
+    void (*array_access_out_of_bounds)(void *context, uint16_t pc, uint16_t size, uint16_t index);
+    // DIVISION_BY_ZERO(pc); the VM is stopped.
+    void (*division_by_zero)(void *context, uint16_t pc);
+    // NODE_SPECIFIC_ERROR(pc, message); the VM is stopped.
+    void (*node_specific_error)(void *context, uint16_t pc, const char *message);
+} vm_callbacks;
+
+// A native function. Before the call the VM has popped the function's
+// `stack_words` words into `arguments` (arguments[0] was the top of the
+// stack); the function reaches variables only through vm_variables().
+typedef void (*vm_native_function)(vm_state *vm, const int16_t *arguments);
+
+typedef struct vm_native_parameter {
+    int16_t size; // > 0 fixed, < 0 template id, 0 any size (protocol.md §5.5)
+    const char *name;
+} vm_native_parameter;
+
+typedef struct vm_native {
+    const char *name;
+    const char *description;
+    vm_native_function function;
+    uint8_t stack_words; // parameters + size words (bytecode.md §9)
+    uint8_t parameter_count;
+    const vm_native_parameter *parameters;
+} vm_native;
+
+// The natives a node exports, in NATIVE_CALL order; the same order is sent in
+// NATIVE_FUNCTION_DESCRIPTION messages. Tables are data: a target may chain
+// the standard one after its own by listing both.
+typedef struct vm_native_table {
+    const vm_native *const *natives;
+    uint16_t count;
+} vm_native_table;
+
+// Memory the caller gives the VM; it must outlive the VM.
+typedef struct vm_memory {
+    uint16_t *bytecode;
+    uint16_t bytecode_size;
+    int16_t *variables;
+    uint16_t variables_size;
+    int16_t *stack;
+    uint16_t stack_size;
+    uint16_t args_size; // size of the `args` named variable at VM_NAMED_ARGS
+} vm_memory;
+
+struct vm_state {
+    uint16_t node_id;
+    uint16_t pc;
+    int16_t sp; // index of the top of the stack, -1 when empty
+    uint16_t flags;
+    uint16_t breakpoint_count;
+    uint16_t breakpoints[VM_MAX_BREAKPOINTS];
+    uint16_t random_state; // of math.rand, per node
+    vm_memory memory;
+    vm_native_table natives;
+    const vm_callbacks *callbacks;
+    void *context;
+};
+
+// Prepares a VM over `memory`: an empty event table (bytecode[0] = 0), all
+// variables zero, no event active (flags 0).
+void vm_init(vm_state *vm,
+             const vm_memory *memory,
+             uint16_t node_id,
+             const vm_native_table *natives,
+             const vm_callbacks *callbacks,
+             void *context);
+
+// Address of the handler of `event`, or 0 when the bytecode does not handle it.
+uint16_t vm_event_address(const vm_state *vm, uint16_t event);
+
+// Starts the handler of `event` (killing, and reporting, an active one).
+// Returns its address, or 0 and changes nothing when it is not handled.
+uint16_t vm_setup_event(vm_state *vm, uint16_t event);
+
+// Delivers a user event from the network (bytecode.md §7): sets `source`,
+// copies the payload into `args` (clamped to its size) and sets up the handler.
+// Does nothing while paused inside an event.
+void vm_receive_event(vm_state *vm,
+                      uint16_t event,
+                      uint16_t source,
+                      const int16_t *payload,
+                      uint16_t count);
+
+// Runs the active event until it ends, an error or a breakpoint stops it, or
+// `step_budget` instructions have run (0: no limit). Returns whether anything
+// ran; a handler cut by the budget goes on at the next call.
+bool vm_run(vm_state *vm, uint16_t step_budget);
+
+// Executes exactly one instruction of the active event, ignoring breakpoints.
+// Returns false when no event is active.
+bool vm_step(vm_state *vm);
+
+// Whether an event handler is executing or waiting to continue.
+static inline bool vm_is_event_active(const vm_state *vm)
+{
+    return (vm->flags & VM_FLAG_EVENT_ACTIVE) != 0;
+}
+
+// The debug commands of bytecode.md §6.4, each with its protocol answer.
+void vm_set_bytecode(vm_state *vm, uint16_t start, const uint16_t *words, uint16_t count);
+void vm_reset(vm_state *vm);
+void vm_command_run(vm_state *vm);
+void vm_command_pause(vm_state *vm);
+void vm_command_step(vm_state *vm);
+void vm_command_stop(vm_state *vm);
+void vm_report_state(vm_state *vm);
+
+// Breakpoints: set answers whether it was stored (room left, pc inside the
+// bytecode); clear removes the first entry at pc.
+bool vm_breakpoint_set(vm_state *vm, uint16_t pc);
+void vm_breakpoint_clear(vm_state *vm, uint16_t pc);
+void vm_breakpoint_clear_all(vm_state *vm);
+
+// Clears the `was-true` bit of every conditional branch so that each `when`
+// starts as false (run by vm_reset; firmware also runs it on stored bytecode).
+void vm_reset_when_flags(vm_state *vm);
+
+// For natives and firmware: `length` variables from `address`, or NULL after
+// stopping the VM with an "out of variables bounds" error when they do not fit.
+int16_t *vm_variables(vm_state *vm, uint16_t address, uint16_t length);
+
+// For natives and firmware: stop the VM and report an error at the current pc.
+void vm_error_array_access(vm_state *vm, uint16_t size, uint16_t index);
+void vm_error_division_by_zero(vm_state *vm);
+void vm_error_node_specific(vm_state *vm, const char *message);
+
+#endif
