@@ -16,25 +16,25 @@
 #define EPUCK_FREE_WORDS     256 // for user variables and temporaries
 
 // EPUCK_VARIABLE(identifier, "name", size in words), in memory order.
-#define EPUCK_VARIABLE_LIST(X)                                                                 \
-    X(id, "id", 1)                                                                             \
-    X(source, "source", 1)                                                                     \
-    X(args, "args", 32)                                                                        \
-    X(left_speed, "leftSpeed", 1)                                                              \
-    X(right_speed, "rightSpeed", 1)                                                            \
-    X(leds, "leds", 8)                                                                         \
-    X(prox, "prox", 8)                                                                         \
-    X(ambient, "ambiant", 8)                                                                   \
-    X(acc, "acc", 3)                                                                           \
-    X(cam_line, "camLine", 1)                                                                  \
-    X(cam_red, "camR", 60)                                                                     \
-    X(cam_green, "camG", 60)                                                                   \
+#define EPUCK_VARIABLE_LIST(X)                                                                     \
+    X(id, "id", 1)                                                                                 \
+    X(source, "source", 1)                                                                         \
+    X(args, "args", 32)                                                                            \
+    X(left_speed, "leftSpeed", 1)                                                                  \
+    X(right_speed, "rightSpeed", 1)                                                                \
+    X(leds, "leds", 8)                                                                             \
+    X(prox, "prox", 8)                                                                             \
+    X(ambient, "ambiant", 8)                                                                       \
+    X(acc, "acc", 3)                                                                               \
+    X(cam_line, "camLine", 1)                                                                      \
+    X(cam_red, "camR", 60)                                                                         \
+    X(cam_green, "camG", 60)                                                                       \
     X(cam_blue, "camB", 60)
 
 // EPUCK_LOCAL_EVENT(identifier, "name", "description"), in id order: the i-th
 // has event id 0xFFFE - i.
-#define EPUCK_LOCAL_EVENT_LIST(X)                                                              \
-    X(ir_sensors, "ir_sensors", "new proximity and ambient values")                            \
+#define EPUCK_LOCAL_EVENT_LIST(X)                                                                  \
+    X(ir_sensors, "ir_sensors", "new proximity and ambient values")                                \
     X(camera, "camera", "new camera line")
 
 #endif

@@ -105,6 +105,9 @@ void vm_error_node_specific(vm_state *vm, const char *message)
 
 int16_t *vm_variables(vm_state *vm, uint16_t address, uint16_t length)
 {
+    // An empty span touches nothing: any address will do, as upstream.
+    if (length == 0)
+        return vm->memory.variables;
     if (address >= vm->memory.variables_size || length > vm->memory.variables_size - address) {
         vm_error_node_specific(vm, error_variables_bounds);
         return NULL;

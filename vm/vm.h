@@ -158,7 +158,8 @@ void vm_breakpoint_clear_all(vm_state *vm);
 void vm_reset_when_flags(vm_state *vm);
 
 // For natives and firmware: `length` variables from `address`, or NULL after
-// stopping the VM with an "out of variables bounds" error when they do not fit.
+// stopping the VM with an "out of variables bounds" error when they do not
+// fit. An empty span is always granted (and must not be accessed).
 int16_t *vm_variables(vm_state *vm, uint16_t address, uint16_t length);
 
 // For natives and firmware: stop the VM and report an error at the current pc.

@@ -1,0 +1,59 @@
+// The e-puck firmware: an Aseba node with the e-puck's description, its
+// memory, and a main loop over the board (hal.h). The dsPIC build owns one
+// instance; the host runs as many as it simulates robots.
+
+#ifndef EPUCK_FIRMWARE_H
+#define EPUCK_FIRMWARE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "epuck_config.h"
+#include "epuck_description.h"
+#include "hal/hal.h"
+#include "vm/node.h"
+
+// The VM's variables: the named ones as a struct, so the firmware reads and
+// writes them by name, then the words left for user variables.
+typedef struct epuck_named_variables {
+#define EPUCK_VARIABLE_MEMBER(identifier, name, size) int16_t identifier[size];
+    EPUCK_VARIABLE_LIST(EPUCK_VARIABLE_MEMBER)
+#undef EPUCK_VARIABLE_MEMBER
+} epuck_named_variables;
+
+#define EPUCK_VARIABLE_WORDS(identifier, name, size) +(size)
+#define EPUCK_NAMED_WORDS                            (0 EPUCK_VARIABLE_LIST(EPUCK_VARIABLE_WORDS))
+#define EPUCK_VARIABLES_WORDS                        (EPUCK_NAMED_WORDS + EPUCK_FREE_WORDS)
+
+// The struct must lay the variables out exactly as the description counts them.
+typedef char epuck_named_variables_have_no_padding
+  [sizeof(epuck_named_variables) == EPUCK_NAMED_WORDS * sizeof(int16_t) ? 1 : -1];
+
+typedef struct epuck_firmware {
+    hal_board *board;
+    node_state node;
+    uint16_t bytecode[EPUCK_BYTECODE_WORDS];
+    int16_t stack[EPUCK_STACK_WORDS];
+    union {
+        int16_t words[EPUCK_VARIABLES_WORDS];
+        epuck_named_variables named;
+    } variables;
+    // Received bytes the node could not take yet (a frame was waiting).
+    uint8_t link_bytes[EPUCK_LINK_CHUNK];
+    uint16_t link_start;
+    uint16_t link_count;
+    uint32_t next_ir_sensors_ms;
+    uint32_t next_camera_ms;
+} epuck_firmware;
+
+// Starts the firmware on `board` as node `node_id` (1..0xFFFE).
+void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t node_id);
+
+// One pass of the main loop; never blocks. Returns whether more work is
+// waiting (when false the caller may idle until the next input or tick).
+bool epuck_firmware_poll(epuck_firmware *firmware);
+
+// The e-puck's description, as sent to hosts.
+extern const node_description epuck_description;
+
+#endif

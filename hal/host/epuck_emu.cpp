@@ -1,0 +1,159 @@
+// epuck-emu: the e-puck firmware image running on a PC. Each robot is the
+// real firmware (VM, natives, protocol node) on a simulated board; together
+// they form one Aseba network that tools reach over TCP.
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "network.hpp"
+
+extern "C" {
+#include "firmware/epuck_firmware.h"
+}
+
+namespace
+{
+
+const char usage[] = R"(Usage: epuck-emu [OPTIONS]
+
+Runs simulated e-puck robots, each with the real firmware, as one Aseba
+network (protocol 5) that Aseba Studio, asebamassloader, asebacmd and the
+other Aseba tools reach over TCP, as they would reach real robots behind a
+Bluetooth switch.
+
+Options:
+  --port N          TCP port of the network (default 33333)
+  --robots N        number of robots, node ids 1..N (default 1)
+  --duration S      stop after S seconds (default: run until interrupted)
+  -h, --help        show this help
+
+The robots have no physical world yet: their sensor variables stay 0, and
+their local events ir_sensors and camera fire at the hardware's rates.
+)";
+
+std::atomic<bool> stop_requested{ false };
+
+void request_stop(int)
+{
+    stop_requested = true;
+}
+
+struct Options {
+    uint16_t port = 33333;
+    unsigned robots = 1;
+    double duration_seconds = 0;
+};
+
+[[noreturn]] void fail(const std::string &message)
+{
+    std::fprintf(stderr, "epuck-emu: %s\n(run with --help for the options)\n", message.c_str());
+    std::exit(2);
+}
+
+unsigned long parse_number(const char *option,
+                           const char *text,
+                           unsigned long low,
+                           unsigned long high)
+{
+    char *end = nullptr;
+    errno = 0;
+    unsigned long value = std::strtoul(text, &end, 10);
+    if (errno != 0 || end == text || *end != '\0' || value < low || value > high)
+        fail(std::string(option) + " expects a whole number from " + std::to_string(low) + " to " +
+             std::to_string(high) + ", not '" + text + "'");
+    return value;
+}
+
+Options parse_options(int argc, char **argv)
+{
+    Options options;
+    for (int i = 1; i < argc; i++) {
+        std::string argument = argv[i];
+        auto value = [&]() -> const char * {
+            if (i + 1 >= argc)
+                fail(argument + " needs a value");
+            return argv[++i];
+        };
+        if (argument == "-h" || argument == "--help") {
+            std::fputs(usage, stdout);
+            std::exit(0);
+        } else if (argument == "--port") {
+            options.port = uint16_t(parse_number("--port", value(), 1, 65535));
+        } else if (argument == "--robots") {
+            options.robots = unsigned(parse_number("--robots", value(), 1, 1000));
+        } else if (argument == "--duration") {
+            options.duration_seconds = double(parse_number("--duration", value(), 0, 1u << 30));
+        } else {
+            fail("unknown option '" + argument + "'");
+        }
+    }
+    return options;
+}
+
+struct Robot {
+    hal_board board;
+    epuck_firmware firmware;
+};
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    Options options = parse_options(argc, argv);
+    std::signal(SIGINT, request_stop);
+    std::signal(SIGTERM, request_stop);
+    std::signal(SIGPIPE, SIG_IGN);
+
+    std::vector<std::unique_ptr<Robot>> robots;
+    aseba::host::Network network;
+    try {
+        network.listen(options.port);
+        for (unsigned i = 0; i < options.robots; i++) {
+            auto robot = std::make_unique<Robot>();
+            host_board_init(&robot->board, nullptr, nullptr);
+            network.attach(&robot->board);
+            epuck_firmware_init(&robot->firmware, &robot->board, uint16_t(i + 1));
+            robots.push_back(std::move(robot));
+        }
+    } catch (const std::exception &error) {
+        fail(error.what());
+    }
+
+    std::printf("epuck-emu: %u robot%s on tcp:port=%u\n",
+                options.robots,
+                options.robots == 1 ? "" : "s",
+                unsigned(options.port));
+    std::fflush(stdout);
+
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    while (!stop_requested) {
+        auto elapsed = clock::now() - start;
+        double seconds = std::chrono::duration<double>(elapsed).count();
+        if (options.duration_seconds > 0 && seconds >= options.duration_seconds)
+            break;
+        uint32_t now_ms =
+          uint32_t(std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count());
+        bool busy = false;
+        for (auto &robot : robots) {
+            host_board_set_time(&robot->board, now_ms);
+            busy |= epuck_firmware_poll(&robot->firmware);
+        }
+        // Wait for the network only when no robot has work left; the robots'
+        // clocks tick in milliseconds, so never wait longer than one.
+        network.service(busy ? 0 : 1);
+    }
+    std::printf("epuck-emu: stopped after %.1f s, %llu frames on the network\n",
+                std::chrono::duration<double>(clock::now() - start).count(),
+                static_cast<unsigned long long>(network.frames_moved()));
+    return 0;
+}

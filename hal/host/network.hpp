@@ -1,0 +1,84 @@
+// One Aseba network on a PC: simulated boards and TCP clients (Studio, the
+// console, the Debian tools) on a shared bus, the way a Bluetooth-to-TCP
+// switch joins real robots. Every frame from one member goes to all others,
+// so robots hear each other's events and every tool hears everything.
+//
+// The bus moves whole frames only: bytes from a client or a board are cut
+// into frames (protocol.md §2) before they are passed on, so two clients
+// writing at once never interleave inside a frame on a robot's link.
+
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+extern "C" {
+#include "hal/host/host_board.h"
+}
+
+namespace aseba::host
+{
+
+using Frame = std::vector<uint8_t>;
+
+// Cuts a byte stream into Aseba frames.
+class FrameReader
+{
+  public:
+    // Takes bytes; false once a header announced a payload above the
+    // protocol's maximum: the stream can no longer be followed.
+    bool feed(const uint8_t *bytes, size_t count);
+    // The next complete frame, if any.
+    std::optional<Frame> next();
+
+  private:
+    std::vector<uint8_t> pending_;
+    bool broken_ = false;
+};
+
+class Network
+{
+  public:
+    Network();
+    ~Network();
+    Network(const Network &) = delete;
+    Network &operator=(const Network &) = delete;
+
+    // Accepts clients on `port` of the loopback and other interfaces; throws
+    // std::runtime_error with the system's reason when it cannot.
+    void listen(uint16_t port);
+
+    // Joins a board: its link output comes to the bus, the bus feeds its link.
+    void attach(hal_board *board);
+
+    // Moves frames: accepts clients, reads and writes sockets (waiting up to
+    // `timeout_ms` for one of them), and feeds boards what their links can
+    // take. Call it often; it never waits longer than asked.
+    void service(int timeout_ms);
+
+    // Clients connected now.
+    size_t client_count() const;
+
+    // Frames that crossed the bus since the start.
+    uint64_t frames_moved() const
+    {
+        return frames_moved_;
+    }
+
+  private:
+    struct Member;
+    void broadcast(const Member *from, const Frame &frame);
+    void close_client(size_t index, const char *reason);
+    static void board_output(void *context, const uint8_t *bytes, uint16_t count);
+
+    std::vector<int> listeners_;
+    std::vector<std::unique_ptr<Member>> boards_;
+    std::vector<std::unique_ptr<Member>> clients_;
+    uint64_t frames_moved_ = 0;
+};
+
+} // namespace aseba::host

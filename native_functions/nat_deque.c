@@ -1,0 +1,351 @@
+// The deque natives (language.md §13.2): double-ended queues stored in an
+// ordinary array, whose layout programs can see, so it is upstream's:
+//
+//   Q[0] = n, the number of stored words     Q[1] = j, where the ring starts
+//   Q[2 ... K+1] = the ring of capacity K    (K = length of Q - 2)
+//
+// The word at logical position p is Q[2 + (j + p) mod K]; a zero-filled
+// array is an empty deque. `src`/`dest` arguments move their whole size at
+// once. Errors carry the full payload (pc, length of Q, offending index or
+// size), where upstream sends only the pc (bytecode.md §8.1).
+//
+// The header is program data: a deque whose n or j is out of range (never
+// made by these functions) is refused with the same error, since upstream
+// would write outside the array.
+
+#include <stddef.h>
+
+#include "nat_internal.h"
+
+#define DEQUE_COUNT        0 // Q[0]
+#define DEQUE_START        1 // Q[1]
+#define DEQUE_HEADER_WORDS 2 // the ring follows the header
+
+typedef struct deque {
+    int16_t *words;    // the whole array Q
+    uint16_t length;   // of Q, for error reports
+    uint16_t capacity; // K
+    uint16_t count;    // n, 0 ... K
+    uint16_t start;    // j, 0 ... K-1 (0 when K = 0)
+} deque;
+
+// Fetches the deque at `address` of `length_word` words and checks its
+// header. Returns false, the VM stopped, when it is unusable.
+static bool open_deque(vm_state *vm, int16_t address, int16_t length_word, deque *queue)
+{
+    uint16_t length = nat_length(length_word);
+    queue->words = vm_variables(vm, (uint16_t)address, length);
+    if (queue->words == NULL)
+        return false;
+    queue->length = length;
+    if (length < DEQUE_HEADER_WORDS) {
+        vm_error_array_access(vm, length, length);
+        return false;
+    }
+    queue->capacity = length - DEQUE_HEADER_WORDS;
+    int16_t count = queue->words[DEQUE_COUNT];
+    int16_t start = queue->words[DEQUE_START];
+    if (count < 0 || (uint16_t)count > queue->capacity) {
+        vm_error_array_access(vm, length, (uint16_t)count);
+        return false;
+    }
+    if (start < 0 || (start > 0 && (uint16_t)start >= queue->capacity)) {
+        vm_error_array_access(vm, length, (uint16_t)start);
+        return false;
+    }
+    queue->count = (uint16_t)count;
+    queue->start = (uint16_t)start;
+    return true;
+}
+
+// Ring slot `offset` slots after slot `slot`, for slot < K and offset <= K
+// (so K - size slots after is size slots before), with no sum that could
+// overflow 16 bits.
+static uint16_t forward(const deque *queue, uint16_t slot, uint16_t offset)
+{
+    uint16_t room = queue->capacity - slot;
+    return offset >= room ? offset - room : slot + offset;
+}
+
+// Ring slot one before `slot`.
+static uint16_t backward(const deque *queue, uint16_t slot)
+{
+    return slot == 0 ? queue->capacity - 1 : slot - 1;
+}
+
+static int16_t *ring(const deque *queue)
+{
+    return queue->words + DEQUE_HEADER_WORDS;
+}
+
+static void store_header(const deque *queue)
+{
+    queue->words[DEQUE_START] = (int16_t)queue->start;
+    queue->words[DEQUE_COUNT] = (int16_t)queue->count;
+}
+
+// Error unless 0 <= index <= K - 1 (deque.get, set, insert and erase).
+static bool check_index(vm_state *vm, const deque *queue, int16_t index)
+{
+    if (index < 0 || (uint16_t)index >= queue->capacity) {
+        vm_error_array_access(vm, queue->length, (uint16_t)index);
+        return false;
+    }
+    return true;
+}
+
+// Error unless `end` (one past the last logical position used) <= n.
+static bool check_stored(vm_state *vm, const deque *queue, int32_t end)
+{
+    if (end > queue->count) {
+        vm_error_array_access(vm, queue->length, (uint16_t)end);
+        return false;
+    }
+    return true;
+}
+
+// Error unless `size` more words fit (deque.insert and push).
+static bool check_room(vm_state *vm, const deque *queue, uint16_t size)
+{
+    if (size > queue->capacity - queue->count) {
+        vm_error_array_access(vm, queue->length, (uint16_t)(queue->count + size));
+        return false;
+    }
+    return true;
+}
+
+// Copies `count` words one by one from logical position `from` to logical
+// position `to` (both <= K), going up, or down when `descending`; the
+// direction decides what overlapping moves do, so it is upstream's.
+static void move_words(const deque *queue,
+                       uint16_t to,
+                       uint16_t from,
+                       uint16_t count,
+                       bool descending)
+{
+    if (count == 0)
+        return;
+    int16_t *words = ring(queue);
+    uint16_t to_slot = forward(queue, queue->start, to);
+    uint16_t from_slot = forward(queue, queue->start, from);
+    for (; count > 0; --count) {
+        words[to_slot] = words[from_slot];
+        to_slot = descending ? backward(queue, to_slot) : forward(queue, to_slot, 1);
+        from_slot = descending ? backward(queue, from_slot) : forward(queue, from_slot, 1);
+    }
+}
+
+static void read_words(const deque *queue, uint16_t index, int16_t *dest, uint16_t size)
+{
+    uint16_t slot = forward(queue, queue->start, index);
+    for (uint16_t i = 0; i < size; ++i) {
+        dest[i] = ring(queue)[slot];
+        slot = forward(queue, slot, 1);
+    }
+}
+
+static void write_words(const deque *queue, uint16_t index, const int16_t *src, uint16_t size)
+{
+    uint16_t slot = forward(queue, queue->start, index);
+    for (uint16_t i = 0; i < size; ++i) {
+        ring(queue)[slot] = src[i];
+        slot = forward(queue, slot, 1);
+    }
+}
+
+// Inserts src before logical position `index` (< K; size <= K - n), moving
+// whichever side of the ring is shorter, as upstream does (without its
+// defect for 1 <= index < n/2, language.md §13.2).
+static void insert_words(deque *queue, uint16_t index, const int16_t *src, uint16_t size)
+{
+    if (index < queue->count / 2) {
+        // Start `size` slots earlier, and move the first `index` words there.
+        queue->start = forward(queue, queue->start, queue->capacity - size);
+        move_words(queue, 0, size, index, false);
+    } else if (index < queue->count) {
+        // Move the words from `index` on `size` slots up, the last first.
+        uint16_t last = queue->count - 1;
+        move_words(queue, last + size, last, queue->count - index, true);
+    }
+    write_words(queue, index, src, size);
+    queue->count += size;
+    store_header(queue);
+}
+
+// Removes `size` words from logical position `index` on (index + size <= n),
+// moving the shorter side of the ring.
+static void erase_words(deque *queue, uint16_t index, uint16_t size)
+{
+    // Upstream never ends for size 0 in one case; removing nothing is ours.
+    if (size == 0)
+        return;
+    if (index < queue->count / 2) {
+        // Move the first `index` words `size` slots up, the last first.
+        move_words(queue, index + size - 1, index - 1, index, true);
+        queue->start = forward(queue, queue->start, size);
+    } else {
+        // Move the words after the gap `size` slots down, the first first.
+        move_words(queue, index, index + size, queue->count - size - index, false);
+    }
+    queue->count -= size;
+    store_header(queue);
+}
+
+void nat_deque_size_function(vm_state *vm, const int16_t *arguments)
+{
+    // Only n is read, so the array needs just that word, not a whole header.
+    uint16_t length = nat_size_after(arguments, 2);
+    const int16_t *words = vm_variables(vm, (uint16_t)arguments[0], length);
+    if (words == NULL)
+        return;
+    int16_t *size = vm_variables(vm, (uint16_t)arguments[1], 1);
+    if (size == NULL)
+        return;
+    if (length < DEQUE_COUNT + 1) {
+        vm_error_array_access(vm, length, DEQUE_COUNT);
+        return;
+    }
+    *size = words[DEQUE_COUNT];
+}
+
+// The layout of deque.get, set and insert: &deque, &tuple, &index, N, M.
+// Returns false, the VM stopped, when an argument is unusable.
+static bool open_indexed(vm_state *vm,
+                         const int16_t *arguments,
+                         deque *queue,
+                         int16_t **tuple,
+                         uint16_t *tuple_size,
+                         int16_t *index)
+{
+    if (!open_deque(vm, arguments[0], arguments[3], queue))
+        return false;
+    *tuple_size = nat_length(arguments[4]);
+    *tuple = vm_variables(vm, (uint16_t)arguments[1], *tuple_size);
+    if (*tuple == NULL)
+        return false;
+    const int16_t *index_variable = vm_variables(vm, (uint16_t)arguments[2], 1);
+    if (index_variable == NULL)
+        return false;
+    *index = *index_variable;
+    return check_index(vm, queue, *index);
+}
+
+void nat_deque_get_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    int16_t *dest;
+    uint16_t size;
+    int16_t index;
+    if (!open_indexed(vm, arguments, &queue, &dest, &size, &index))
+        return;
+    if (!check_stored(vm, &queue, (int32_t)index + size))
+        return;
+    read_words(&queue, (uint16_t)index, dest, size);
+}
+
+void nat_deque_set_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    int16_t *src;
+    uint16_t size;
+    int16_t index;
+    if (!open_indexed(vm, arguments, &queue, &src, &size, &index))
+        return;
+    if (!check_stored(vm, &queue, (int32_t)index + size))
+        return;
+    write_words(&queue, (uint16_t)index, src, size);
+}
+
+void nat_deque_insert_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    int16_t *src;
+    uint16_t size;
+    int16_t index;
+    if (!open_indexed(vm, arguments, &queue, &src, &size, &index))
+        return;
+    // As upstream, index may be past n (up to K - 1): it inserts into
+    // words that are not stored yet.
+    if (!check_room(vm, &queue, size))
+        return;
+    insert_words(&queue, (uint16_t)index, src, size);
+}
+
+void nat_deque_erase_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    if (!open_deque(vm, arguments[0], arguments[3], &queue))
+        return;
+    int16_t *scalars[2];
+    if (!nat_spans(vm, arguments + 1, 2, 1, scalars))
+        return;
+    int16_t index = *scalars[0];
+    int16_t size = *scalars[1];
+    if (!check_index(vm, &queue, index))
+        return;
+    // A negative size is refused: upstream compares it as unsigned.
+    if (size < 0) {
+        vm_error_array_access(vm, queue.length, (uint16_t)(index + size));
+        return;
+    }
+    if (!check_stored(vm, &queue, (int32_t)index + size))
+        return;
+    erase_words(&queue, (uint16_t)index, (uint16_t)size);
+}
+
+// The layout of the push and pop functions: &deque, &tuple, N, M.
+static bool open_end(vm_state *vm,
+                     const int16_t *arguments,
+                     deque *queue,
+                     int16_t **tuple,
+                     uint16_t *tuple_size)
+{
+    if (!open_deque(vm, arguments[0], arguments[2], queue))
+        return false;
+    *tuple_size = nat_length(arguments[3]);
+    *tuple = vm_variables(vm, (uint16_t)arguments[1], *tuple_size);
+    return *tuple != NULL;
+}
+
+void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    int16_t *src;
+    uint16_t size;
+    if (!open_end(vm, arguments, &queue, &src, &size) || !check_room(vm, &queue, size))
+        return;
+    insert_words(&queue, 0, src, size);
+}
+
+void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    int16_t *src;
+    uint16_t size;
+    if (!open_end(vm, arguments, &queue, &src, &size) || !check_room(vm, &queue, size))
+        return;
+    insert_words(&queue, queue.count, src, size);
+}
+
+void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    int16_t *dest;
+    uint16_t size;
+    if (!open_end(vm, arguments, &queue, &dest, &size) || !check_stored(vm, &queue, size))
+        return;
+    read_words(&queue, 0, dest, size);
+    erase_words(&queue, 0, size);
+}
+
+void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments)
+{
+    deque queue;
+    int16_t *dest;
+    uint16_t size;
+    if (!open_end(vm, arguments, &queue, &dest, &size) || !check_stored(vm, &queue, size))
+        return;
+    uint16_t index = queue.count - size;
+    read_words(&queue, index, dest, size);
+    erase_words(&queue, index, size);
+}

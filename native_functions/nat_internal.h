@@ -1,0 +1,78 @@
+// What the files of the standard natives share: the C functions behind the
+// descriptions of nat_standard.c and the helpers that fetch arguments.
+// Not for use outside native_functions/.
+
+#ifndef NAT_INTERNAL_H
+#define NAT_INTERNAL_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "vm.h"
+
+// The low 16 bits of `value` as a signed word: Aseba's wrapping arithmetic.
+static inline int16_t nat_wrap(int32_t value)
+{
+    return (int16_t)(uint16_t)(uint32_t)value;
+}
+
+// Fetches `count` spans of `length` words whose addresses are
+// arguments[0 .. count-1] into spans[]. Returns false, the VM stopped with an
+// error, as soon as one does not fit in the variables.
+bool nat_spans(vm_state *vm,
+               const int16_t *arguments,
+               uint16_t count,
+               uint16_t length,
+               int16_t **spans);
+
+// The template size word `word` as a length. A negative word becomes a
+// length larger than any memory, which vm_variables refuses.
+static inline uint16_t nat_length(int16_t word)
+{
+    return (uint16_t)word;
+}
+
+// The size word N of a native with `parameter_count` parameters, which the
+// VM pops right after their addresses (bytecode.md §9).
+static inline uint16_t nat_size_after(const int16_t *arguments, uint16_t parameter_count)
+{
+    return nat_length(arguments[parameter_count]);
+}
+
+// nat_math.c
+void nat_math_copy_function(vm_state *vm, const int16_t *arguments);
+void nat_math_fill_function(vm_state *vm, const int16_t *arguments);
+void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments);
+void nat_math_add_function(vm_state *vm, const int16_t *arguments);
+void nat_math_sub_function(vm_state *vm, const int16_t *arguments);
+void nat_math_mul_function(vm_state *vm, const int16_t *arguments);
+void nat_math_div_function(vm_state *vm, const int16_t *arguments);
+void nat_math_min_function(vm_state *vm, const int16_t *arguments);
+void nat_math_max_function(vm_state *vm, const int16_t *arguments);
+void nat_math_clamp_function(vm_state *vm, const int16_t *arguments);
+void nat_math_dot_function(vm_state *vm, const int16_t *arguments);
+void nat_math_stat_function(vm_state *vm, const int16_t *arguments);
+void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments);
+void nat_math_sort_function(vm_state *vm, const int16_t *arguments);
+void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments);
+void nat_math_rand_function(vm_state *vm, const int16_t *arguments);
+
+// nat_trigonometry.c
+void nat_math_atan2_function(vm_state *vm, const int16_t *arguments);
+void nat_math_sin_function(vm_state *vm, const int16_t *arguments);
+void nat_math_cos_function(vm_state *vm, const int16_t *arguments);
+void nat_math_rot2_function(vm_state *vm, const int16_t *arguments);
+void nat_math_sqrt_function(vm_state *vm, const int16_t *arguments);
+
+// nat_deque.c
+void nat_deque_size_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_get_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_set_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_insert_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_erase_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments);
+void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments);
+
+#endif

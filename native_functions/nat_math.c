@@ -1,0 +1,311 @@
+// The arithmetic natives of the standard library (language.md §13.2):
+// element-wise vector operations, statistics, sorting and math.rand.
+//
+// Arguments may overlap (the same variable passed twice, or slices of one
+// array): every loop reads the source elements of index i just before it
+// writes dest[i], in increasing i, exactly like upstream, so overlapping
+// calls give upstream's results.
+
+#include <stddef.h>
+
+#include "nat_internal.h"
+
+// The linear congruential generator of math.rand (upstream's constants).
+#define RAND_MULTIPLIER 25173u
+#define RAND_INCREMENT  13849u
+
+// Shifts of math.dot at and beyond the width of the 32-bit accumulator.
+#define DOT_ACCUMULATOR_BITS 32
+
+typedef int16_t (*binary_operation)(int16_t left, int16_t right);
+
+// dest[i] = operation(src1[i], src2[i]) for the layout &dest, &src1, &src2, N.
+static void elementwise(vm_state *vm, const int16_t *arguments, binary_operation operation)
+{
+    int16_t *spans[3];
+    uint16_t length = nat_size_after(arguments, 3);
+    if (!nat_spans(vm, arguments, 3, length, spans))
+        return;
+    int16_t *dest = spans[0];
+    const int16_t *src1 = spans[1];
+    const int16_t *src2 = spans[2];
+    for (uint16_t i = 0; i < length; ++i)
+        dest[i] = operation(src1[i], src2[i]);
+}
+
+static int16_t add(int16_t left, int16_t right)
+{
+    return nat_wrap((int32_t)left + right);
+}
+
+static int16_t subtract(int16_t left, int16_t right)
+{
+    return nat_wrap((int32_t)left - right);
+}
+
+static int16_t multiply(int16_t left, int16_t right)
+{
+    return nat_wrap((int32_t)left * right);
+}
+
+static int16_t minimum(int16_t left, int16_t right)
+{
+    return left < right ? left : right;
+}
+
+static int16_t maximum(int16_t left, int16_t right)
+{
+    return left > right ? left : right;
+}
+
+void nat_math_copy_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *spans[2];
+    uint16_t length = nat_size_after(arguments, 2);
+    if (!nat_spans(vm, arguments, 2, length, spans))
+        return;
+    for (uint16_t i = 0; i < length; ++i)
+        spans[0][i] = spans[1][i];
+}
+
+void nat_math_fill_function(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = nat_size_after(arguments, 2);
+    int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], length);
+    if (dest == NULL)
+        return;
+    const int16_t *value = vm_variables(vm, (uint16_t)arguments[1], 1);
+    if (value == NULL)
+        return;
+    // value is re-read at each element: it may be one of them.
+    for (uint16_t i = 0; i < length; ++i)
+        dest[i] = *value;
+}
+
+void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *spans[2];
+    uint16_t length = nat_size_after(arguments, 3);
+    if (!nat_spans(vm, arguments, 2, length, spans))
+        return;
+    const int16_t *scalar = vm_variables(vm, (uint16_t)arguments[2], 1);
+    if (scalar == NULL)
+        return;
+    // Read once, unlike math.fill's value: upstream's order.
+    int16_t addend = *scalar;
+    for (uint16_t i = 0; i < length; ++i)
+        spans[0][i] = add(spans[1][i], addend);
+}
+
+void nat_math_add_function(vm_state *vm, const int16_t *arguments)
+{
+    elementwise(vm, arguments, add);
+}
+
+void nat_math_sub_function(vm_state *vm, const int16_t *arguments)
+{
+    elementwise(vm, arguments, subtract);
+}
+
+void nat_math_mul_function(vm_state *vm, const int16_t *arguments)
+{
+    elementwise(vm, arguments, multiply);
+}
+
+void nat_math_div_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *spans[3];
+    uint16_t length = nat_size_after(arguments, 3);
+    if (!nat_spans(vm, arguments, 3, length, spans))
+        return;
+    int16_t *dest = spans[0];
+    const int16_t *dividend = spans[1];
+    const int16_t *divisor = spans[2];
+    for (uint16_t i = 0; i < length; ++i) {
+        int16_t denominator = divisor[i];
+        if (denominator == 0) {
+            vm_error_division_by_zero(vm);
+            return;
+        }
+        // In 32 bits, so that -32768 / -1 wraps instead of trapping.
+        dest[i] = nat_wrap((int32_t)dividend[i] / denominator);
+    }
+}
+
+void nat_math_min_function(vm_state *vm, const int16_t *arguments)
+{
+    elementwise(vm, arguments, minimum);
+}
+
+void nat_math_max_function(vm_state *vm, const int16_t *arguments)
+{
+    elementwise(vm, arguments, maximum);
+}
+
+void nat_math_clamp_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *spans[4];
+    uint16_t length = nat_size_after(arguments, 4);
+    if (!nat_spans(vm, arguments, 4, length, spans))
+        return;
+    int16_t *dest = spans[0];
+    const int16_t *src = spans[1];
+    const int16_t *low = spans[2];
+    const int16_t *high = spans[3];
+    for (uint16_t i = 0; i < length; ++i) {
+        int16_t value = src[i];
+        if (value > high[i])
+            dest[i] = high[i];
+        else if (value < low[i])
+            dest[i] = low[i];
+        else
+            dest[i] = value;
+    }
+}
+
+void nat_math_dot_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], 1);
+    if (dest == NULL)
+        return;
+    int16_t *sources[2];
+    uint16_t length = nat_size_after(arguments, 4);
+    if (!nat_spans(vm, arguments + 1, 2, length, sources))
+        return;
+    const int16_t *shift_variable = vm_variables(vm, (uint16_t)arguments[3], 1);
+    if (shift_variable == NULL)
+        return;
+    int16_t shift = *shift_variable;
+
+    // Summed unsigned so that overflow wraps as upstream's 32-bit sum does.
+    uint32_t sum = 0;
+    for (uint16_t i = 0; i < length; ++i)
+        sum += (uint32_t)((int32_t)sources[0][i] * sources[1][i]);
+    int32_t accumulator = (int32_t)sum;
+
+    // Upstream leaves shifts outside 0 ... 32 to the processor; we define
+    // them (bytecode.md §11): negative is no shift, 32 keeps the sign.
+    if (shift > DOT_ACCUMULATOR_BITS)
+        *dest = 0;
+    else if (shift == DOT_ACCUMULATOR_BITS)
+        *dest = accumulator < 0 ? -1 : 0;
+    else if (shift < 0)
+        *dest = nat_wrap(accumulator);
+    else
+        *dest = nat_wrap(accumulator >> shift);
+}
+
+void nat_math_stat_function(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = nat_size_after(arguments, 4);
+    const int16_t *src = vm_variables(vm, (uint16_t)arguments[0], length);
+    if (src == NULL)
+        return;
+    int16_t *outputs[3];
+    if (!nat_spans(vm, arguments + 1, 3, 1, outputs))
+        return;
+    int16_t *min = outputs[0];
+    int16_t *max = outputs[1];
+    int16_t *mean = outputs[2];
+    if (length == 0)
+        return;
+
+    // The outputs may alias each other or src: compare with their current
+    // contents, as upstream does, rather than with local copies.
+    *min = src[0];
+    *max = src[0];
+    int32_t sum = src[0];
+    for (uint16_t i = 1; i < length; ++i) {
+        int16_t value = src[i];
+        if (value < *min)
+            *min = value;
+        if (value > *max)
+            *max = value;
+        sum += value;
+    }
+    *mean = (int16_t)(sum / (int32_t)length);
+}
+
+void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = nat_size_after(arguments, 3);
+    const int16_t *src = vm_variables(vm, (uint16_t)arguments[0], length);
+    if (src == NULL)
+        return;
+    int16_t *outputs[2];
+    if (!nat_spans(vm, arguments + 1, 2, 1, outputs))
+        return;
+    int16_t *argmin = outputs[0];
+    int16_t *argmax = outputs[1];
+
+    // An output is only written when it changes; src[i] is read once, before
+    // argmin is written, since the outputs may alias src (upstream's order).
+    int16_t lowest = INT16_MAX;
+    int16_t highest = INT16_MIN;
+    for (uint16_t i = 0; i < length; ++i) {
+        int16_t value = src[i];
+        if (value < lowest) {
+            lowest = value;
+            *argmin = (int16_t)i;
+        }
+        if (value > highest) {
+            highest = value;
+            *argmax = (int16_t)i;
+        }
+    }
+}
+
+void nat_math_sort_function(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = nat_size_after(arguments, 1);
+    int16_t *array = vm_variables(vm, (uint16_t)arguments[0], length);
+    if (array == NULL)
+        return;
+    // Shell sort: insertion sorts over shrinking gaps, small code and no
+    // recursion; any correct sort gives upstream's result.
+    for (uint16_t gap = length / 2; gap > 0; gap /= 2) {
+        for (uint16_t i = gap; i < length; ++i) {
+            int16_t value = array[i];
+            uint16_t j = i;
+            while (j >= gap && array[j - gap] > value) {
+                array[j] = array[j - gap];
+                j -= gap;
+            }
+            array[j] = value;
+        }
+    }
+}
+
+void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *spans[4];
+    uint16_t length = nat_size_after(arguments, 4);
+    if (!nat_spans(vm, arguments, 4, length, spans))
+        return;
+    int16_t *dest = spans[0];
+    const int16_t *a = spans[1];
+    const int16_t *b = spans[2];
+    const int16_t *c = spans[3];
+    for (uint16_t i = 0; i < length; ++i) {
+        int16_t divisor = c[i];
+        if (divisor == 0) {
+            vm_error_division_by_zero(vm);
+            return;
+        }
+        // |a * b| <= 2^30 fits, and so does its quotient by -1.
+        dest[i] = nat_wrap((int32_t)a[i] * b[i] / divisor);
+    }
+}
+
+void nat_math_rand_function(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = nat_size_after(arguments, 1);
+    int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], length);
+    if (dest == NULL)
+        return;
+    for (uint16_t i = 0; i < length; ++i) {
+        vm->random_state =
+          (uint16_t)((uint32_t)RAND_MULTIPLIER * vm->random_state + RAND_INCREMENT);
+        dest[i] = (int16_t)vm->random_state;
+    }
+}
