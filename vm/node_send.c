@@ -1,0 +1,191 @@
+// Outgoing frames: a writer that streams one frame through the transport in
+// small pieces, and the messages a node sends besides its description
+// (protocol.md §5). Every length is computed before the header is written,
+// so a frame never needs to exist whole in memory.
+
+#include "node_internal.h"
+
+#include <stddef.h>
+
+#define BYTE_MASK 0xFF
+#define BYTE_BITS 8
+// A UTF-8 continuation byte is 10xxxxxx.
+#define UTF8_CONTINUATION_MASK  0xC0
+#define UTF8_CONTINUATION_VALUE 0x80
+
+static void flush(node_state *node, bool frame_complete)
+{
+    node->transport.send(
+      node->transport.context, node->transmit, node->transmit_fill, frame_complete);
+    node->transmit_fill = 0;
+}
+
+static void put_byte(node_state *node, uint8_t byte)
+{
+    if (node->transmit_left == 0)
+        return; // more than announced: never let it reach the wire
+    node->transmit[node->transmit_fill++] = byte;
+    node->transmit_left--;
+    // The last piece is sent by node_frame_end, marked as such.
+    if (node->transmit_fill == NODE_TRANSMIT_CHUNK && node->transmit_left > 0)
+        flush(node, false);
+}
+
+void node_frame_begin(node_state *node, uint16_t type, uint16_t payload_length)
+{
+    if (payload_length > NODE_MAX_PAYLOAD)
+        payload_length = NODE_MAX_PAYLOAD;
+    node->transmit_fill = 0;
+    node->transmit_left = (uint16_t)(NODE_HEADER_SIZE + payload_length);
+    node_frame_put_u16(node, payload_length);
+    node_frame_put_u16(node, node->vm.node_id);
+    node_frame_put_u16(node, type);
+}
+
+void node_frame_put_u16(node_state *node, uint16_t value)
+{
+    put_byte(node, (uint8_t)(value & BYTE_MASK));
+    put_byte(node, (uint8_t)(value >> BYTE_BITS));
+}
+
+void node_frame_put_string(node_state *node, const char *text, uint8_t length)
+{
+    uint8_t i;
+
+    put_byte(node, length);
+    for (i = 0; i < length; i++)
+        put_byte(node, (uint8_t)text[i]);
+}
+
+void node_frame_end(node_state *node)
+{
+    while (node->transmit_left > 0)
+        put_byte(node, 0);
+    flush(node, true);
+}
+
+uint8_t node_string_length(const char *text, uint16_t limit)
+{
+    uint16_t length = 0;
+
+    if (text == NULL)
+        return 0;
+    if (limit > NODE_MAX_STRING)
+        limit = NODE_MAX_STRING;
+    while (length < limit && text[length] != '\0')
+        length++;
+    // Cut before a character, not inside one, when the text goes on.
+    if (text[length] != '\0') {
+        while (length > 0 &&
+               ((uint8_t)text[length] & UTF8_CONTINUATION_MASK) == UTF8_CONTINUATION_VALUE)
+            length--;
+    }
+    return (uint8_t)length;
+}
+
+void node_send_words(node_state *node, uint16_t type, const uint16_t *words, uint16_t count)
+{
+    uint16_t i;
+
+    if (count > NODE_MAX_PAYLOAD / 2)
+        count = NODE_MAX_PAYLOAD / 2;
+    node_frame_begin(node, type, (uint16_t)(count * 2));
+    for (i = 0; i < count; i++)
+        node_frame_put_u16(node, words[i]);
+    node_frame_end(node);
+}
+
+void node_send_variables(node_state *node, uint16_t start, uint16_t length)
+{
+    uint16_t size = node->vm.memory.variables_size;
+    const int16_t *variables = node->vm.memory.variables;
+    uint16_t count = start < size ? (uint16_t)(size - start) : 0;
+
+    if (count > length)
+        count = length;
+    // Always one answer, empty when nothing of the range exists, so that a
+    // host waiting for it is not left waiting.
+    do {
+        uint16_t part = count < NODE_MAX_VARIABLES_WORDS ? count : NODE_MAX_VARIABLES_WORDS;
+        uint16_t i;
+
+        node_frame_begin(node, NODE_MSG_VARIABLES, (uint16_t)(2 + part * 2));
+        node_frame_put_u16(node, start);
+        for (i = 0; i < part; i++)
+            node_frame_put_u16(node, (uint16_t)variables[start + i]);
+        node_frame_end(node);
+        start = (uint16_t)(start + part);
+        count = (uint16_t)(count - part);
+    } while (count > 0);
+}
+
+void node_send_user_event(node_state *node, uint16_t event, const int16_t *payload, uint16_t count)
+{
+    uint16_t i;
+
+    // Types from 0x8000 are not user events; and hosts allow 258 words.
+    if (event >= NODE_FIRST_SYSTEM_TYPE)
+        return;
+    if (count > NODE_MAX_PAYLOAD / 2)
+        count = NODE_MAX_PAYLOAD / 2;
+    node_frame_begin(node, event, (uint16_t)(count * 2));
+    for (i = 0; i < count; i++)
+        node_frame_put_u16(node, (uint16_t)payload[i]);
+    node_frame_end(node);
+}
+
+// --- the VM's reports --------------------------------------------------------
+
+static void on_emit(void *context, uint16_t event, const int16_t *payload, uint16_t count)
+{
+    node_send_user_event((node_state *)context, event, payload, count);
+}
+
+static void on_execution_state_changed(void *context, uint16_t pc, uint16_t flags)
+{
+    uint16_t words[2];
+
+    words[0] = pc;
+    words[1] = flags;
+    node_send_words((node_state *)context, NODE_MSG_EXECUTION_STATE_CHANGED, words, 2);
+}
+
+static void on_event_killed(void *context, uint16_t pc)
+{
+    node_send_words((node_state *)context, NODE_MSG_EVENT_EXECUTION_KILLED, &pc, 1);
+}
+
+static void on_array_access_out_of_bounds(void *context, uint16_t pc, uint16_t size, uint16_t index)
+{
+    uint16_t words[3];
+
+    words[0] = pc;
+    words[1] = size;
+    words[2] = index;
+    node_send_words((node_state *)context, NODE_MSG_ARRAY_ACCESS_OUT_OF_BOUNDS, words, 3);
+}
+
+static void on_division_by_zero(void *context, uint16_t pc)
+{
+    node_send_words((node_state *)context, NODE_MSG_DIVISION_BY_ZERO, &pc, 1);
+}
+
+static void on_node_specific_error(void *context, uint16_t pc, const char *message)
+{
+    node_state *node = (node_state *)context;
+    uint8_t length = node_string_length(message, NODE_MAX_STRING);
+
+    node_frame_begin(node, NODE_MSG_NODE_SPECIFIC_ERROR, (uint16_t)(2 + 1 + length));
+    node_frame_put_u16(node, pc);
+    node_frame_put_string(node, message, length);
+    node_frame_end(node);
+}
+
+const vm_callbacks node_vm_callbacks = {
+    on_emit,
+    on_execution_state_changed,
+    on_event_killed,
+    on_array_access_out_of_bounds,
+    on_division_by_zero,
+    on_node_specific_error,
+};
