@@ -1,30 +1,55 @@
 #!/usr/bin/env bash
-# Builds the portable layers (VM, natives) with avr-gcc, whose `int` is 16
-# bits like the dsPIC's, and with arm-none-eabi-gcc for a Cortex-M4, warnings
-# as errors, and prints their code and data sizes.
+# Builds the portable layers (VM, node protocol, natives) with avr-gcc, whose
+# `int` is 16 bits like the dsPIC's, and with arm-none-eabi-gcc for a
+# Cortex-M4, warnings as errors, and prints their code and constant-data
+# sizes per layer.
 # Usage: cross-check.sh BUILD_DIR SOURCE...
 set -euo pipefail
 build=$1
 shift
+sources=("$@")
 
 flags=(-std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef
        -ffunction-sections -fdata-sections -Ivm -Inative_functions -I.)
 
-check() { # name compiler size-tool extra-flags...
+# The layer a source belongs to, for the size table.
+layer_of() {
+    case $1 in
+    vm/node*) echo "node protocol" ;;
+    vm/*) echo "vm" ;;
+    native_functions/*) echo "natives" ;;
+    *) echo "other" ;;
+    esac
+}
+
+check() { # name compiler size-tool flags...
     local name=$1 compiler=$2 size_tool=$3
     shift 3
     local out=$build/cross-$name
     mkdir -p "$out"
-    local objects=()
+    echo "== $compiler $* -Os"
     for source in "${sources[@]}"; do
-        local object=$out/$(echo "${source%.c}" | tr / _).o
+        local object
+        object=$out/$(echo "${source%.c}" | tr / _).o
         "$compiler" "${flags[@]}" "$@" -c "$source" -o "$object"
-        objects+=("$object")
-    done
-    echo "== $name ($compiler $*)"
-    "$size_tool" -t "${objects[@]}"
+        # Code is .text; constant data (.rodata, tables in program memory)
+        # also ends up in flash.
+        "$size_tool" -A "$object" | awk -v layer="$(layer_of "$source")" '
+            $1 ~ /^\.text/ { code += $2 }
+            $1 ~ /^\.(rodata|progmem)/ { constant += $2 }
+            $1 ~ /^\.(data|bss)/ { ram += $2 }
+            END { printf "%s\t%d\t%d\t%d\n", layer, code, constant, ram }'
+    done | awk -F'\t' '
+        { code[$1] += $2; constant[$1] += $3; ram[$1] += $4; order[$1] = 1 }
+        END {
+            printf "  %-16s %8s %12s %6s\n", "layer", "code", "const data", "RAM"
+            for (layer in order) {
+                printf "  %-16s %8d %12d %6d\n", layer, code[layer], constant[layer], ram[layer]
+                total_code += code[layer]; total_constant += constant[layer]; total_ram += ram[layer]
+            }
+            printf "  %-16s %8d %12d %6d   bytes\n", "total", total_code, total_constant, total_ram
+        }'
 }
 
-sources=("$@")
 check avr avr-gcc avr-size -mmcu=atmega1284p
 check arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb
