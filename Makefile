@@ -5,6 +5,7 @@
 #   make               everything for the host (build/host)
 #   make test          every test, under ASan + UBSan (build/host-sanitize)
 #   make cross-check   the portable layers with 16- and 32-bit cross compilers
+#   make fuzz          every fuzz target for FUZZ_SECONDS (default 60) each
 #   make run           the main job
 #   make format        clang-format every source file
 
@@ -85,7 +86,7 @@ HOST_OUTPUTS = $(foreach l,$(LIBRARIES),$(BUILD)/host/lib/lib$(l).a) \
                $(foreach t,$(TESTS),$(BUILD)/host/tests/$(t))
 TEST_BINARIES = $(foreach t,$(TESTS),$(BUILD)/host-sanitize/tests/$(t))
 
-.PHONY: all test tests cross-check run format clean deps
+.PHONY: all test tests cross-check run format clean deps fuzz
 all: $(HOST_OUTPUTS)
 
 tests: $(TEST_BINARIES)
@@ -101,6 +102,11 @@ deps:
 PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c)
 cross-check: | $(DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
+
+# Every libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan.
+FUZZ_SECONDS ?= 60
+fuzz: | $(DEPS_STAMP)
+	@scripts/fuzz.sh $(FUZZ_SECONDS) $(BUILD)
 
 run: all
 	@scripts/run-main-job.sh $(BUILD)/host

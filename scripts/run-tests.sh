@@ -12,13 +12,15 @@ for test in "$@"; do
     "$test" --gtest_color=no --gtest_brief=1 >"$log" 2>&1
     status=$?
     ran=$(sed -n 's/^\[==========\] \([0-9]*\) tests\? from .* ran\..*/\1/p' "$log" | tail -n1)
-    bad=$(sed -n 's/^\[  FAILED  \] \([0-9]*\) tests\?, listed below:.*/\1/p' "$log" | tail -n1)
-    bad=${bad:-0}
+    good=$(sed -n 's/^\[  PASSED  \] \([0-9]*\) tests\?\..*/\1/p' "$log" | tail -n1)
     if [ -z "$ran" ]; then
         echo "$name: no test summary (exit status $status)"
         tail -n 30 "$log"
         failed=$((failed + 1))
     else
+        # gtest's brief mode lists no failures: they are the tests that ran
+        # and did not pass.
+        bad=$((ran - ${good:-0}))
         passed=$((passed + ran - bad))
         failed=$((failed + bad))
         if [ "$status" -ne 0 ] || [ "$bad" -ne 0 ]; then

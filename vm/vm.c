@@ -21,7 +21,7 @@ static const char error_unknown_native[] = "unknown native function";
 static const char error_event_too_large[] = "emitted event too large";
 
 // How the run loop ended.
-enum run_outcome { RUN_EVENT_ENDED, RUN_BUDGET_SPENT, RUN_BREAKPOINT, RUN_ERROR };
+enum run_outcome { RUN_EVENT_ENDED, RUN_BUDGET_SPENT, RUN_BREAKPOINT, RUN_INTERRUPTED, RUN_ERROR };
 
 void vm_init(vm_state *vm,
              const vm_memory *memory,
@@ -225,8 +225,9 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
     if ((uint16_t)(bytecode_size - pc) < (n))                                                      \
     goto bytecode_out_of_bounds
 
-// Runs at most `budget` instructions of the active event.
-static enum run_outcome execute(vm_state *vm, uint16_t budget, bool use_breakpoints)
+// Runs at most `budget` instructions of the active event. A run (as opposed
+// to a single step) stops at breakpoints and when EVENT_RUNNING is cleared.
+static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
 {
     uint16_t *const bytecode = vm->memory.bytecode;
     int16_t *const variables = vm->memory.variables;
@@ -234,7 +235,7 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool use_breakpoi
     const uint16_t bytecode_size = vm->memory.bytecode_size;
     const uint16_t variables_size = vm->memory.variables_size;
     const int16_t stack_top = (int16_t)(vm->memory.stack_size - 1);
-    const uint16_t breakpoint_count = use_breakpoints ? vm->breakpoint_count : 0;
+    const uint16_t breakpoint_count = running ? vm->breakpoint_count : 0;
     uint16_t remaining = budget;
     uint16_t pc = vm->pc;
     int16_t sp = vm->sp;
@@ -459,10 +460,17 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool use_breakpoi
         vm->pc = pc;
         vm->sp = sp;
         native->function(vm, arguments);
-        // A native that raised an error has stopped the event where it was.
-        if (!(vm->flags & VM_FLAG_EVENT_ACTIVE))
-            return RUN_ERROR;
         pc++;
+        // A native may have stopped the event (an error) or, in a run,
+        // cleared EVENT_RUNNING to end the run after this instruction.
+        if (!(vm->flags & VM_FLAG_EVENT_ACTIVE)) {
+            vm->pc = pc;
+            return RUN_ERROR;
+        }
+        if (running && !(vm->flags & VM_FLAG_EVENT_RUNNING)) {
+            vm->pc = pc;
+            return RUN_INTERRUPTED;
+        }
         VM_NEXT();
     }
 

@@ -12,19 +12,7 @@
 // Every frame the node sends is also read by Debian's libasebacommon (see
 // tests/node/reference_decoder.hpp), as upstream hosts would.
 //
-// Build and run from the repository root with clang 14 (the C layers are
-// compiled with fuzzer-no-link so that libFuzzer sees their coverage):
-//   mkdir -p build/fuzz-node/corpus
-//   for f in vm/*.c native_functions/*.c; do clang -std=gnu99 -g -O1
-//     -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all
-//     -I. -Ivm -Inative_functions -c $f -o build/fuzz-node/$(basename $f .c).o; done
-//   clang++ -std=c++20 -g -O1 -fsanitize=fuzzer,address,undefined
-//     -fno-sanitize-recover=all -I. -Ivm -Inative_functions -isystem /usr/include/aseba
-//     tests/fuzz/node_fuzzer.cpp tests/node/node_harness.cpp
-//     tests/node/reference_decoder.cpp build/fuzz-node/*.o -lasebacommon
-//     -o build/fuzz-node/node_fuzzer
-//   build/fuzz-node/node_fuzzer -max_total_time=600 build/fuzz-node/corpus
-// (each command on one line).
+// Built and run by `make fuzz` (scripts/fuzz.sh).
 
 #include "../node/node_harness.hpp"
 

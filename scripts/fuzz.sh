@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Builds libFuzzer targets with clang (ASan + UBSan) and runs each for a
+# bounded time. Any crash stops with a non-zero status; its input is kept in
+# BUILD_DIR/fuzz/<target>/ to become a regression test.
+# Usage: scripts/fuzz.sh SECONDS BUILD_DIR [TARGET...]   (default: every target)
+set -euo pipefail
+seconds=$1
+build=$2
+shift 2
+
+# TARGET: its sources (C files are the portable layers under test, compiled
+# for coverage; C++ files the harness), extra link flags and input size limit.
+declare -A sources=(
+    [vm]="vm/vm.c vm/vm_debug.c tests/fuzz/vm_fuzzer.cpp tests/vm/fuzz_driver.cpp
+          tests/support/vm_harness.cpp"
+    [node]="vm/vm.c vm/vm_debug.c vm/node.c vm/node_send.c vm/node_description.c
+            native_functions/nat_arguments.c native_functions/nat_math.c
+            native_functions/nat_trigonometry.c native_functions/nat_deque.c
+            native_functions/nat_standard.c tests/fuzz/node_fuzzer.cpp
+            tests/node/node_harness.cpp tests/node/reference_decoder.cpp"
+)
+declare -A link_flags=([vm]="" [node]="-lasebacommon")
+declare -A max_length=([vm]=1024 [node]=4096)
+
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(vm node)
+
+sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
+includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba)
+
+for target in "${targets[@]}"; do
+    [ -n "${sources[$target]:-}" ] || { echo "fuzz: unknown target '$target'" >&2; exit 2; }
+    out=$build/fuzz/$target
+    mkdir -p "$out/obj" "$out/corpus"
+    objects=()
+    for source in ${sources[$target]}; do
+        object=$out/obj/$(echo "$source" | tr / _).o
+        case $source in
+        *.c) clang -std=gnu99 -Wall -Wextra -Werror "${sanitize[@]}" -fsanitize=fuzzer-no-link \
+                 "${includes[@]}" -c "$source" -o "$object" ;;
+        *.cpp) clang++ -std=c++20 -Wall -Wextra -Werror "${sanitize[@]}" \
+                 -fsanitize=fuzzer-no-link "${includes[@]}" -c "$source" -o "$object" ;;
+        esac
+        objects+=("$object")
+    done
+    # shellcheck disable=SC2086 # link flags are words
+    clang++ "${sanitize[@]}" -fsanitize=fuzzer "${objects[@]}" ${link_flags[$target]} \
+        -o "$out/fuzzer"
+    echo "fuzz: $target for $seconds s"
+    "$out/fuzzer" -max_total_time="$seconds" -max_len="${max_length[$target]}" \
+        -artifact_prefix="$out/" -print_final_stats=1 "$out/corpus" 2>"$out/log" ||
+        { tail -n 40 "$out/log"; echo "fuzz: $target found a crash, kept in $out/" >&2; exit 1; }
+    grep -E "stat::number_of_executed_units|Done [0-9]+ runs" "$out/log" | tail -n 1
+done

@@ -1,0 +1,46 @@
+# Tests of the VM (vm/), described in tests/vm/README.md. The programs and
+# debug tests run twice: on the VM as built for the firmware (switch
+# dispatch) and on the computed-goto variant, a second library built from
+# the same source by tests/vm/vm_goto.c.
+VM_TEST_GTEST_LDLIBS := -lgtest -lgtest_main -pthread
+
+LIBRARIES += aseba_vm_goto
+aseba_vm_goto_SOURCES := tests/vm/vm_goto.c vm/vm_debug.c
+
+VM_PROGRAM_TEST_SOURCES := tests/vm/programs_test.cpp tests/vm/program_script.cpp \
+                           tests/vm/operators_test.cpp tests/vm/assembler_test.cpp
+
+TESTS += vm_programs_test
+vm_programs_test_SOURCES := $(VM_PROGRAM_TEST_SOURCES)
+vm_programs_test_LIBS := test_support aseba_vm
+vm_programs_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+
+TESTS += vm_programs_goto_test
+vm_programs_goto_test_SOURCES := $(VM_PROGRAM_TEST_SOURCES)
+vm_programs_goto_test_LIBS := test_support aseba_vm_goto
+vm_programs_goto_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+
+TESTS += vm_debug_test
+vm_debug_test_SOURCES := tests/vm/debug_test.cpp
+vm_debug_test_LIBS := test_support aseba_vm
+vm_debug_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+
+TESTS += vm_debug_goto_test
+vm_debug_goto_test_SOURCES := tests/vm/debug_test.cpp
+vm_debug_goto_test_LIBS := test_support aseba_vm_goto
+vm_debug_goto_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+
+# Differential tests against Debian's reference VM (package `aseba`,
+# /usr/lib/libasebavm.a), whose headers are not ours: no warnings from them.
+TESTS += vm_reference_test
+vm_reference_test_SOURCES := tests/vm/reference_test.cpp tests/vm/reference_node.cpp \
+                             tests/vm/random_program.cpp
+vm_reference_test_LIBS := test_support aseba_vm
+vm_reference_test_LDLIBS := -lasebavm $(VM_TEST_GTEST_LDLIBS)
+EXTRA_CFLAGS_tests/vm/reference_node := -isystem /usr/include/aseba
+
+# Random images and commands; meant for the sanitizer build (`make test`).
+TESTS += vm_fuzz_test
+vm_fuzz_test_SOURCES := tests/vm/fuzz_test.cpp tests/vm/fuzz_driver.cpp tests/vm/random_program.cpp
+vm_fuzz_test_LIBS := test_support aseba_vm
+vm_fuzz_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)

@@ -1,0 +1,13 @@
+; STORE_INDIRECT cut by the end of the bytecode (size 6): its operand
+; words would be read past the array, so the VM stops with "out of
+; bytecode bounds" (bytecode.md §8.5) before doing anything.
+# memory bytecode=6
+event init start
+start:
+    SMALL_IMMEDIATE 5
+    SMALL_IMMEDIATE 0
+    .word 0x6028
+# set var[40] = 5
+# expect error node_specific pc=* "out of bytecode bounds"
+# expect flags 2
+# expect var[40] = 5
