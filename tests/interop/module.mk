@@ -1,0 +1,12 @@
+# Interoperability of epuck-emu with the reference Aseba tools of Debian's
+# `aseba` package (asebamassloader, asebadump, asebacmd, asebaswitch,
+# asebahttp): the test starts epuck-emu and the tools on loopback and watches
+# the robots with its own protocol client.
+TESTS += interop_test
+interop_test_SOURCES := tests/interop/interop_test.cpp tests/interop/aseba_client.cpp \
+                        tests/interop/child_process.cpp tests/interop/interop_support.cpp
+interop_test_LDLIBS := -lgtest -lgtest_main -pthread
+
+# The test runs the plain host build of the emulator (order-only: it is a
+# program to start, not something to link).
+$(BUILD)/host-sanitize/tests/interop_test: | $(BUILD)/host/bin/epuck-emu
