@@ -108,3 +108,10 @@ bool epuck_firmware_poll(epuck_firmware *firmware)
     busy = node_poll(&firmware->node, now);
     return busy || firmware->link_count != 0;
 }
+
+void epuck_firmware_start_program(epuck_firmware *firmware, const uint16_t *bytecode,
+                                  uint16_t count)
+{
+    vm_set_bytecode(&firmware->node.vm, 0, bytecode, count);
+    vm_command_run(&firmware->node.vm);
+}

@@ -53,6 +53,11 @@ void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t no
 // waiting (when false the caller may idle until the next input or tick).
 bool epuck_firmware_poll(epuck_firmware *firmware);
 
+// Starts `count` words of bytecode as a stored program starts at boot: init
+// runs at once, not paused (bytecode.md §6.5).
+void epuck_firmware_start_program(epuck_firmware *firmware, const uint16_t *bytecode,
+                                  uint16_t count);
+
 // The e-puck's description, as sent to hosts.
 extern const node_description epuck_description;
 

@@ -129,6 +129,8 @@ void Network::board_output(void *context, const uint8_t *bytes, uint16_t count)
 void Network::broadcast(const Member *from, const Frame &frame)
 {
     frames_moved_++;
+    if (observer_)
+        observer_(frame);
     for (auto &board : boards_) {
         if (board.get() != from)
             board->to_board.push_back(frame);

@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -69,6 +70,12 @@ class Network
         return frames_moved_;
     }
 
+    // Called with every frame that crosses the bus (for status and logs).
+    void observe(std::function<void(const Frame &)> observer)
+    {
+        observer_ = std::move(observer);
+    }
+
   private:
     struct Member;
     void broadcast(const Member *from, const Frame &frame);
@@ -79,6 +86,7 @@ class Network
     std::vector<std::unique_ptr<Member>> boards_;
     std::vector<std::unique_ptr<Member>> clients_;
     uint64_t frames_moved_ = 0;
+    std::function<void(const Frame &)> observer_;
 };
 
 } // namespace aseba::host
