@@ -108,8 +108,9 @@ FUZZ_SECONDS ?= 60
 fuzz: | $(DEPS_STAMP)
 	@scripts/fuzz.sh $(FUZZ_SECONDS) $(BUILD)
 
+# The main job; RUN_ARGS go to epuck-emu (e.g. RUN_ARGS="--duration 60").
 run: all
-	@scripts/run-main-job.sh $(BUILD)/host
+	@scripts/run-main-job.sh $(BUILD)/host $(RUN_ARGS)
 
 format:
 	clang-format -i $$(git ls-files '*.c' '*.h' '*.cpp' '*.hpp')

@@ -11,10 +11,14 @@
 #include <cstring>
 #include <memory>
 #include <stdexcept>
+#include <unistd.h>
 #include <string>
 #include <vector>
 
 #include "network.hpp"
+#include "network_status.hpp"
+#include "tools/compiler/program_file.hpp"
+#include "tools/compiler/target_presets.hpp"
 
 extern "C" {
 #include "firmware/epuck_firmware.h"
@@ -34,6 +38,11 @@ Options:
   --port N          TCP port of the network (default 33333)
   --robots N        number of robots, node ids 1..N (default 1)
   --duration S      stop after S seconds (default: run until interrupted)
+  --load FILE       compile FILE (an .aesl project or a script) for the e-puck
+                    and start it on every robot, as if stored in the robots
+  --node NAME       in an .aesl project, the node whose program to load
+                    (default: the one named e-puck, else the first)
+  --quiet           no status line
   -h, --help        show this help
 
 The robots have no physical world yet: their sensor variables stay 0, and
@@ -51,6 +60,9 @@ struct Options {
     uint16_t port = 33333;
     unsigned robots = 1;
     double duration_seconds = 0;
+    std::string load;
+    std::string node;
+    bool quiet = false;
 };
 
 [[noreturn]] void fail(const std::string &message)
@@ -90,6 +102,12 @@ Options parse_options(int argc, char **argv)
             options.port = uint16_t(parse_number("--port", value(), 1, 65535));
         } else if (argument == "--robots") {
             options.robots = unsigned(parse_number("--robots", value(), 1, 1000));
+        } else if (argument == "--load") {
+            options.load = value();
+        } else if (argument == "--node") {
+            options.node = value();
+        } else if (argument == "--quiet") {
+            options.quiet = true;
         } else if (argument == "--duration") {
             options.duration_seconds = double(parse_number("--duration", value(), 0, 1u << 30));
         } else {
@@ -104,6 +122,35 @@ struct Robot {
     epuck_firmware firmware;
 };
 
+// The program of --load, compiled for the e-puck; exits with the compiler's
+// message when it does not compile.
+aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &bytecode)
+{
+    aseba::ProgramFile program;
+    try {
+        program = aseba::read_program_file(options.load, options.node);
+        if (options.node.empty() && program.node_name != EPUCK_NAME) {
+            // Prefer the project's e-puck program when it has several nodes.
+            try {
+                program = aseba::read_program_file(options.load, EPUCK_NAME);
+            } catch (const std::runtime_error &) {
+            }
+        }
+    } catch (const std::runtime_error &error) {
+        std::fprintf(stderr, "%s\n", error.what());
+        std::exit(1);
+    }
+    std::string error_text;
+    aseba::CompileResult result =
+      aseba::compile_program_file(program, aseba::epuck_target(), error_text);
+    if (!result.ok) {
+        std::fputs(error_text.c_str(), stderr);
+        std::exit(1);
+    }
+    bytecode = result.bytecode;
+    return program;
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -112,6 +159,11 @@ int main(int argc, char **argv)
     std::signal(SIGINT, request_stop);
     std::signal(SIGTERM, request_stop);
     std::signal(SIGPIPE, SIG_IGN);
+
+    std::vector<uint16_t> bytecode;
+    aseba::ProgramFile program;
+    if (!options.load.empty())
+        program = load_program(options, bytecode);
 
     std::vector<std::unique_ptr<Robot>> robots;
     aseba::host::Network network;
@@ -122,17 +174,30 @@ int main(int argc, char **argv)
             host_board_init(&robot->board, nullptr, nullptr);
             network.attach(&robot->board);
             epuck_firmware_init(&robot->firmware, &robot->board, uint16_t(i + 1));
+            if (!bytecode.empty())
+                epuck_firmware_start_program(
+                  &robot->firmware, bytecode.data(), uint16_t(bytecode.size()));
             robots.push_back(std::move(robot));
         }
     } catch (const std::exception &error) {
         fail(error.what());
     }
+    aseba::host::NetworkStatus status(program.definitions.events);
+    network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
 
-    std::printf("epuck-emu: %u robot%s on tcp:port=%u\n",
+    std::printf("epuck-emu: %u robot%s on tcp:port=%u%s%s\n",
                 options.robots,
                 options.robots == 1 ? "" : "s",
-                unsigned(options.port));
+                unsigned(options.port),
+                options.load.empty() ? "" : ", running ",
+                options.load.c_str());
     std::fflush(stdout);
+
+    // The status line rewrites itself on a terminal, and is logged every 10 s
+    // elsewhere.
+    const bool terminal = isatty(STDOUT_FILENO);
+    const double status_period = terminal ? 0.5 : 10;
+    double next_status = status_period;
 
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
@@ -151,8 +216,15 @@ int main(int argc, char **argv)
         // Wait for the network only when no robot has work left; the robots'
         // clocks tick in milliseconds, so never wait longer than one.
         network.service(busy ? 0 : 1);
+        if (!options.quiet && seconds >= next_status) {
+            next_status += status_period;
+            std::string line = status.line(seconds, robots.size(), network.client_count());
+            std::printf(terminal ? "\r%s\033[K" : "%s\n", line.c_str());
+            std::fflush(stdout);
+        }
     }
-    std::printf("epuck-emu: stopped after %.1f s, %llu frames on the network\n",
+    std::printf("%sepuck-emu: stopped after %.1f s, %llu frames on the network\n",
+                terminal && !options.quiet ? "\n" : "",
                 std::chrono::duration<double>(clock::now() - start).count(),
                 static_cast<unsigned long long>(network.frames_moved()));
     return 0;

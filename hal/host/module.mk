@@ -1,9 +1,10 @@
 # The host board: hal.h over memory, and the TCP network that joins boards
 # and tools.
 LIBRARIES += aseba_host_board
-aseba_host_board_SOURCES := hal/host/host_board.c hal/host/network.cpp
+aseba_host_board_SOURCES := hal/host/host_board.c hal/host/network.cpp hal/host/network_status.cpp
 
 # epuck-emu: the e-puck firmware image running on a PC.
 PROGRAMS += epuck-emu
 epuck-emu_SOURCES := hal/host/epuck_emu.cpp
-epuck-emu_LIBS := aseba_epuck_firmware aseba_host_board aseba_node aseba_vm aseba_natives
+epuck-emu_LIBS := aseba_epuck_firmware aseba_host_board aseba_compiler aseba_node aseba_vm \
+                  aseba_natives

@@ -1,0 +1,79 @@
+// Reading programs from script and project files.
+
+#include "program_file.hpp"
+
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <sstream>
+#include <stdexcept>
+
+#include "aesl.hpp"
+#include "error_format.hpp"
+
+namespace aseba
+{
+
+namespace
+{
+
+std::string read_whole(const std::string &path)
+{
+    if (path == "-")
+        return std::string(std::istreambuf_iterator<char>(std::cin), {});
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+        throw std::runtime_error(path + ": error: cannot read the file");
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
+}
+
+bool is_project(const std::string &path)
+{
+    const std::string suffix = ".aesl";
+    return path.size() >= suffix.size() &&
+           path.compare(path.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+} // namespace
+
+ProgramFile read_program_file(const std::string &path, const std::string &node)
+{
+    ProgramFile program;
+    program.file_name = path == "-" ? "<stdin>" : path;
+    std::string text = read_whole(path);
+    if (!is_project(path)) {
+        program.source = std::move(text);
+        return program;
+    }
+    AeslReadResult project = read_aesl(text);
+    if (!project.ok)
+        throw std::runtime_error(program.file_name + ":" + std::to_string(project.error_line) +
+                                 ": error: " + project.error);
+    for (const AeslNode &candidate : project.project.nodes) {
+        if (node.empty() || candidate.name == node) {
+            program.source = candidate.source;
+            program.node_name = candidate.name;
+            program.definitions = project.project.definitions;
+            program.line_offset = candidate.first_line - 1;
+            program.column_offset = candidate.first_column;
+            return program;
+        }
+    }
+    throw std::runtime_error(program.file_name + ": error: " +
+                             (node.empty() ? "the project has no node"
+                                           : "the project has no node named " + node));
+}
+
+CompileResult compile_program_file(const ProgramFile &program, const TargetDescription &target,
+                                   std::string &error_text)
+{
+    CompileResult result = compile(program.source, target, program.definitions);
+    if (!result.ok)
+        error_text = format_error(program.file_name, program.source, result.error,
+                                  program.line_offset, program.column_offset);
+    return result;
+}
+
+} // namespace aseba
