@@ -1,0 +1,127 @@
+// What the console's end-to-end tests need around them: epuck-emu on a free
+// port, the `aseba` program run with a time limit, and a scratch folder.
+// Every process is owned by an object whose destructor stops it (by its
+// recorded pid), so nothing outlives a failing test.
+
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <sys/types.h>
+#include <vector>
+
+namespace console_test
+{
+
+using Milliseconds = std::chrono::milliseconds;
+
+// The programs under test, relative to the repository root (where the tests
+// run); the plain host build, as `make` produces them.
+inline constexpr const char *EMULATOR_PATH = "build/host/bin/epuck-emu";
+inline constexpr const char *CONSOLE_PATH = "build/host/bin/aseba";
+
+// A private temporary folder, removed with its content at the end.
+class ScratchFolder
+{
+  public:
+    ScratchFolder();
+    ~ScratchFolder();
+    ScratchFolder(const ScratchFolder &) = delete;
+    ScratchFolder &operator=(const ScratchFolder &) = delete;
+    const std::string &path() const
+    {
+        return path_;
+    }
+    // Writes `content` to `name` in the folder; returns the file's path.
+    std::string write(const std::string &name, const std::string &content) const;
+
+  private:
+    std::string path_;
+};
+
+// epuck-emu with `robots` robots, listening on a free loopback port once
+// constructed (throws if it does not start within a few seconds).
+class Emulator
+{
+  public:
+    explicit Emulator(unsigned robots = 1);
+    ~Emulator();
+    Emulator(const Emulator &) = delete;
+    Emulator &operator=(const Emulator &) = delete;
+
+    uint16_t port() const
+    {
+        return port_;
+    }
+    // "tcp:localhost;PORT".
+    std::string target() const;
+
+  private:
+    pid_t pid_ = -1;
+    uint16_t port_ = 0;
+};
+
+struct CommandResult {
+    int exit_code = -1; // -1 when killed (time limit or crash)
+    std::string out;
+    std::string err;
+};
+
+// Runs `aseba ARGS` with XDG_STATE_HOME in `state_folder` (so loads are
+// recorded there), killing it after `limit`.
+CommandResult run_console(const std::vector<std::string> &arguments,
+                          const std::string &state_folder,
+                          Milliseconds limit = Milliseconds(10000));
+
+// A running `aseba ARGS` (e.g. monitor) whose output is collected when it ends.
+class BackgroundConsole
+{
+  public:
+    BackgroundConsole(const std::vector<std::string> &arguments, const std::string &state_folder);
+    ~BackgroundConsole();
+    BackgroundConsole(const BackgroundConsole &) = delete;
+    BackgroundConsole &operator=(const BackgroundConsole &) = delete;
+    // Waits at most `limit` for the end (then kills it) and returns its output.
+    CommandResult finish(Milliseconds limit);
+
+  private:
+    pid_t pid_ = -1;
+    std::string out_path_;
+    std::string err_path_;
+    std::string folder_;
+};
+
+// A reference program (searched in PATH) with extra environment variables,
+// its output appended to `log_path`; stopped by the destructor.
+class ReferenceProgram
+{
+  public:
+    ReferenceProgram(const std::vector<std::string> &arguments,
+                     const std::vector<std::string> &environment, // "NAME=VALUE"
+                     const std::string &log_path);
+    ~ReferenceProgram();
+    ReferenceProgram(const ReferenceProgram &) = delete;
+    ReferenceProgram &operator=(const ReferenceProgram &) = delete;
+    // Whether it still runs (reaps it if it has ended).
+    bool running();
+
+  private:
+    pid_t pid_ = -1;
+};
+
+// Whether `name` is an executable in PATH.
+bool in_path(const std::string &name);
+
+// A loopback TCP port nothing listens on now.
+uint16_t find_free_port();
+
+// Whether a socket listens on `port`, read from /proc/net/tcp* without
+// connecting (the reference playground may crash if connected to while it
+// starts).
+bool is_listening(uint16_t port);
+
+// The lines of `text`.
+std::vector<std::string> lines_of(const std::string &text);
+
+} // namespace console_test

@@ -1,0 +1,17 @@
+# Tests of the console: the client library's codec, targets and variables
+# (client_test), and `aseba` end to end against epuck-emu (console_test).
+TESTS += client_test
+client_test_SOURCES := tests/console/codec_test.cpp tests/console/client_units_test.cpp
+client_test_LIBS := aseba_client aseba_compiler aseba_natives aseba_vm
+client_test_LDLIBS := -lgtest -lgtest_main -pthread
+
+TESTS += console_test
+console_test_SOURCES := tests/console/console_test.cpp tests/console/network_test.cpp \
+                        tests/console/reference_test.cpp \
+                        tests/console/console_support.cpp
+console_test_LIBS := aseba_client aseba_compiler aseba_natives aseba_vm
+console_test_LDLIBS := -lgtest -lgtest_main -pthread
+
+# The test starts the plain host builds of these programs (order-only: they
+# are run, not linked).
+$(BUILD)/host-sanitize/tests/console_test: | $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba

@@ -1,0 +1,265 @@
+// The client library's network model against epuck-emu: discovery and
+// description, variables read in split requests, execution control, and a
+// silent target that must time out instead of hanging.
+
+#include <gtest/gtest.h>
+
+#include <sys/socket.h>
+#include <netinet/in.h>
+#include <thread>
+#include <unistd.h>
+
+#include "console_support.hpp"
+#include "tools/client/network.hpp"
+#include "tools/compiler/target_presets.hpp"
+
+using namespace aseba;
+using namespace aseba::client;
+using console_test::Emulator;
+
+namespace
+{
+
+// The e-puck as firmware/epuck_description.h describes it, through the
+// compiler's preset (a path that does not go through the wire).
+const TargetDescription &expected_epuck()
+{
+    static const TargetDescription description = epuck_target();
+    return description;
+}
+
+} // namespace
+
+TEST(NetworkModel, DiscoversAndDescribesEveryRobot)
+{
+    Emulator emulator(2);
+    Network network;
+    network.connect(emulator.target());
+    network.discover();
+    std::vector<NodeKey> keys = network.node_keys();
+    ASSERT_EQ(keys.size(), 2u);
+    for (uint16_t id = 1; id <= 2; id++) {
+        const Node &node = network.node(keys[id - 1]);
+        EXPECT_EQ(node.key.id, id);
+        ASSERT_TRUE(node.described);
+        EXPECT_EQ(node.protocol_version, 5);
+        const TargetDescription &description = node.description;
+        EXPECT_EQ(description.name, "e-puck");
+        EXPECT_EQ(description.bytecode_size, expected_epuck().bytecode_size);
+        EXPECT_EQ(description.stack_size, expected_epuck().stack_size);
+        ASSERT_EQ(description.named_variables.size(), expected_epuck().named_variables.size());
+        for (size_t i = 0; i < description.named_variables.size(); i++) {
+            EXPECT_EQ(description.named_variables[i].name,
+                      expected_epuck().named_variables[i].name);
+            EXPECT_EQ(description.named_variables[i].size,
+                      expected_epuck().named_variables[i].size);
+        }
+        ASSERT_EQ(description.local_events.size(), expected_epuck().local_events.size());
+        EXPECT_EQ(description.local_events[0].name, "ir_sensors");
+        ASSERT_EQ(description.native_functions.size(), expected_epuck().native_functions.size());
+        for (size_t i = 0; i < description.native_functions.size(); i++)
+            EXPECT_EQ(description.native_functions[i].name,
+                      expected_epuck().native_functions[i].name);
+    }
+    EXPECT_EQ(network.select("2").size(), 1u);
+    EXPECT_EQ(network.select("e-puck").size(), 2u);
+    EXPECT_EQ(network.select("all").size(), 2u);
+    EXPECT_THROW(network.select("7"), NetworkError);
+    EXPECT_EQ(network.malformed_frames(), 0u);
+}
+
+// All the variable memory at once needs two GET_VARIABLES (257 words max);
+// the values written before come back at their addresses.
+TEST(NetworkModel, ReadsAndWritesBeyondOneMessage)
+{
+    Emulator emulator(1);
+    Network network;
+    network.connect(emulator.target());
+    network.discover();
+    NodeKey key = network.select("1").at(0);
+    uint16_t size = network.node(key).description.variables_size;
+    ASSERT_GT(size, MAX_VARIABLES_WORDS);
+
+    // The free memory after the named variables (no program is loaded, so
+    // nothing else writes there).
+    uint16_t free_start = 0;
+    for (const NamedVariable &variable : network.node(key).description.named_variables)
+        free_start = uint16_t(free_start + variable.size);
+    std::vector<int16_t> pattern(size - free_start);
+    for (size_t i = 0; i < pattern.size(); i++)
+        pattern[i] = int16_t(1000 - 7 * int(i));
+    network.write_variables(key, free_start, pattern);
+
+    std::vector<int16_t> all = network.read_variables(key, 0, size);
+    ASSERT_EQ(all.size(), size);
+    EXPECT_EQ(all[0], 1); // the id variable holds the node id
+    for (size_t i = 0; i < pattern.size(); i++)
+        EXPECT_EQ(all[free_start + i], pattern[i]) << "word " << free_start + i;
+    EXPECT_THROW(network.read_variables(key, size - 1, 2), NetworkError);
+}
+
+TEST(NetworkModel, ExecutionControlAnswers)
+{
+    Emulator emulator(1);
+    Network network;
+    network.connect(emulator.target());
+    network.discover();
+    NodeKey key = network.select("all").at(0);
+    // Without a program the node idles: stop leaves it stopped, run running
+    // (bytecode.md §6.4: STOP answers flags STEP_BY_STEP).
+    ExecutionState stopped = network.stop(key);
+    EXPECT_EQ(stopped.flags, FLAG_STEP_BY_STEP);
+    EXPECT_TRUE(stopped.stopped());
+    EXPECT_TRUE(network.run(key).running());
+    EXPECT_TRUE(network.pause(key).flags & FLAG_STEP_BY_STEP);
+    EXPECT_TRUE(network.run(key).running());
+}
+
+// A peer that accepts the connection and never answers: discovery finds
+// nothing and a command fails within the time limit.
+TEST(NetworkModel, SilentTargetTimesOut)
+{
+    int listener = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t length = sizeof address;
+    ASSERT_EQ(bind(listener, reinterpret_cast<sockaddr *>(&address), sizeof address), 0);
+    ASSERT_EQ(listen(listener, 1), 0);
+    ASSERT_EQ(getsockname(listener, reinterpret_cast<sockaddr *>(&address), &length), 0);
+
+    Network network(Milliseconds(300));
+    network.connect("tcp:127.0.0.1;" + std::to_string(ntohs(address.sin_port)));
+    auto start = Clock::now();
+    network.discover();
+    auto waited = Clock::now() - start;
+    EXPECT_TRUE(network.node_keys().empty());
+    EXPECT_GE(waited, Milliseconds(290));
+    EXPECT_LT(waited, Milliseconds(2000));
+    EXPECT_THROW(network.select("all"), NetworkError);
+    close(listener);
+}
+
+namespace
+{
+
+// A scripted node on a loopback socket: it answers LIST_NODES and
+// GET_NODE_DESCRIPTION like a protocol-5 node (id 5, "fake"), first sending
+// a malformed frame, and also speaks for a node 6 of protocol version 6
+// that hosts must ignore.
+class FakeNode
+{
+  public:
+    FakeNode()
+    {
+        listener_ = socket(AF_INET, SOCK_STREAM, 0);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        socklen_t length = sizeof address;
+        bind(listener_, reinterpret_cast<sockaddr *>(&address), sizeof address);
+        listen(listener_, 1);
+        getsockname(listener_, reinterpret_cast<sockaddr *>(&address), &length);
+        port_ = ntohs(address.sin_port);
+        thread_ = std::thread([this] { serve(); });
+    }
+    ~FakeNode()
+    {
+        shutdown(listener_, SHUT_RDWR);
+        close(listener_);
+        thread_.join();
+    }
+    uint16_t port() const
+    {
+        return port_;
+    }
+
+  private:
+    void send(int fd, const Message &message, uint16_t source)
+    {
+        std::vector<uint8_t> bytes = serialize_frame(encode(message, source));
+        (void)!write(fd, bytes.data(), bytes.size());
+    }
+
+    void serve()
+    {
+        int fd = accept(listener_, nullptr, nullptr);
+        if (fd < 0)
+            return;
+        FrameAssembler assembler;
+        uint8_t buffer[1024];
+        ssize_t count;
+        while ((count = read(fd, buffer, sizeof buffer)) > 0) {
+            assembler.feed(buffer, size_t(count));
+            while (std::optional<Frame> frame = assembler.next()) {
+                Message message = decode(*frame);
+                if (std::holds_alternative<ListNodes>(message)) {
+                    // An odd-length user event: malformed, to be dropped.
+                    Frame odd{ 5, 1, { 1, 2, 3 } };
+                    std::vector<uint8_t> bytes = serialize_frame(odd);
+                    (void)!write(fd, bytes.data(), bytes.size());
+                    send(fd, NodePresent{ 5 }, 5);
+                    send(fd, NodePresent{ 6 }, 6);
+                } else if (const auto *get = std::get_if<GetNodeDescription>(&message)) {
+                    uint16_t version = get->dest == 6 ? 6 : 5;
+                    send(fd, Description{ "fake", version, 100, 16, 40, 2, 1, 1 }, get->dest);
+                    send(fd, NamedVariableDescription{ { "id", 1 } }, get->dest);
+                    send(fd, NamedVariableDescription{ { "table", 20 } }, get->dest);
+                    send(fd, LocalEventDescription{ { "tick", "timer" } }, get->dest);
+                    send(fd, NativeFunctionDescription{ { "f", "", { { "x", 1 } } } }, get->dest);
+                } else if (const auto *request = std::get_if<GetVariables>(&message)) {
+                    // Answers in two parts, the second first (hosts merge by start).
+                    uint16_t half = uint16_t(request->length / 2);
+                    std::vector<int16_t> high, low;
+                    for (uint16_t i = 0; i < request->length; i++)
+                        (i < half ? low : high).push_back(int16_t(request->start + i));
+                    send(fd, Variables{ uint16_t(request->start + half), high }, 5);
+                    send(fd, Variables{ request->start, low }, 5);
+                }
+            }
+        }
+        close(fd);
+    }
+
+    int listener_ = -1;
+    uint16_t port_ = 0;
+    std::thread thread_;
+};
+
+} // namespace
+
+TEST(NetworkModel, AssemblesDescriptionsAndSurvivesBadFrames)
+{
+    FakeNode fake;
+    Network network;
+    network.connect("tcp:127.0.0.1;" + std::to_string(fake.port()));
+    std::vector<std::string> errors;
+    network.set_listener([&](const ReceivedFrame &frame) {
+        if (!frame.message)
+            errors.push_back(frame.error);
+    });
+    network.discover();
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("odd number of bytes"), std::string::npos) << errors[0];
+    EXPECT_EQ(network.malformed_frames(), 1u);
+
+    std::vector<NodeKey> selected = network.select("all");
+    ASSERT_EQ(selected.size(), 1u); // node 6 speaks protocol 6: ignored
+    EXPECT_EQ(selected[0].id, 5);
+    const Node &node = network.node(selected[0]);
+    EXPECT_EQ(node.description.name, "fake");
+    EXPECT_EQ(node.description.variables_size, 40);
+    ASSERT_EQ(node.description.named_variables.size(), 2u);
+    EXPECT_EQ(node.description.named_variables[1].name, "table");
+    EXPECT_EQ(node.description.named_variables[1].size, 20);
+    EXPECT_EQ(node.description.local_events.at(0).name, "tick");
+    EXPECT_EQ(node.description.native_functions.at(0).parameters.at(0).name, "x");
+    EXPECT_FALSE(network.node({ 0, 6 }).compatible);
+
+    // The fake answers each read in two messages, the later words first.
+    std::vector<int16_t> values = network.read_variables(selected[0], 1, 20);
+    for (size_t i = 0; i < values.size(); i++)
+        EXPECT_EQ(values[i], int16_t(1 + i));
+    // It never answers execution commands: a clear time-out, no hang.
+    EXPECT_THROW(network.stop(selected[0]), TimeoutError);
+}
