@@ -1,0 +1,338 @@
+// asebac: the Aseba compiler on the command line, and `asebac run` to try a
+// script on the host VM.
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run.hpp"
+#include "tools/compiler/aesl.hpp"
+#include "tools/compiler/compiler.hpp"
+#include "tools/compiler/disassembler.hpp"
+#include "tools/compiler/error_format.hpp"
+#include "tools/compiler/target_json.hpp"
+#include "tools/compiler/target_presets.hpp"
+
+namespace
+{
+
+using namespace aseba;
+
+constexpr unsigned long DEFAULT_STEP_BUDGET = 10000;
+constexpr int EXIT_USAGE = 2;
+
+const char *const HELP =
+  R"(usage: asebac [options] FILE        compile FILE (a script or an .aesl project; - for stdin)
+       asebac run [options] FILE    compile FILE and run it on the host VM
+
+Target and definitions:
+  --target NAME|FILE.json  the node to compile for: epuck (default), dummy (the
+                           reference's asebadummynode), or a target description
+                           file (docs/target-description.md)
+  --node NAME              in an .aesl project, the node whose program to take
+                           (default: the first one)
+  --event NAME[:SIZE]      declare a global event of SIZE words (default 0), for
+                           scripts; an .aesl project declares its own.
+                           With `run`: --event NAME[:a,b,...] sends the event
+                           with these arguments after init (repeatable, in order);
+                           a global event not declared otherwise is declared with
+                           the number of arguments given
+  --constant NAME=VALUE    declare a global constant (scripts only)
+
+Outputs (compile):
+  -o FILE                  write the bytecode to FILE (- for stdout)
+  --format binary|hex|c    bytecode format: binary (16-bit little-endian words),
+                           hex (one 0xXXXX word per line, the default) or c
+                           (a C array)
+  --listing                print the disassembly with source lines
+  --variables              print the variable map: name, address, size
+  With no output option, asebac only checks the program and says how big it is.
+
+Running (run):
+  --steps N                instruction budget of init and of each event (default
+                           10000); an event still running after it is reported
+                           as unfinished
+  The report is JSON: every named and user variable, the events the program
+  emitted, run-time errors and unfinished events. After a run-time error the
+  following events still run.
+
+Exit status: 0 on success, 1 on a compile error (printed as file:line:column),
+2 on bad usage or unreadable files.
+)";
+
+struct Options {
+    bool run = false;
+    std::string input;
+    std::string target = "epuck";
+    std::string node;
+    std::vector<std::string> event_options;
+    std::vector<std::string> constant_options;
+    std::string output;
+    std::string format = "hex";
+    bool listing = false;
+    bool variables = false;
+    unsigned long steps = DEFAULT_STEP_BUDGET;
+};
+
+[[noreturn]] void usage_error(const std::string &message)
+{
+    std::cerr << "asebac: " << message << "\n(asebac --help for usage)\n";
+    std::exit(EXIT_USAGE);
+}
+
+std::optional<long> parse_integer(const std::string &text)
+{
+    if (text.empty())
+        return std::nullopt;
+    char *end = nullptr;
+    long value = std::strtol(text.c_str(), &end, 0);
+    if (*end != '\0')
+        return std::nullopt;
+    return value;
+}
+
+Options parse_options(int argc, char **argv)
+{
+    Options options;
+    int i = 1;
+    if (argc > 1 && std::string(argv[1]) == "run") {
+        options.run = true;
+        i = 2;
+    }
+    auto value = [&](const std::string &option) -> std::string {
+        if (i + 1 >= argc)
+            usage_error(option + " needs a value");
+        return argv[++i];
+    };
+    for (; i < argc; ++i) {
+        std::string argument = argv[i];
+        if (argument == "--help" || argument == "-h") {
+            std::cout << HELP;
+            std::exit(0);
+        } else if (argument == "--target") {
+            options.target = value(argument);
+        } else if (argument == "--node") {
+            options.node = value(argument);
+        } else if (argument == "--event") {
+            options.event_options.push_back(value(argument));
+        } else if (argument == "--constant") {
+            options.constant_options.push_back(value(argument));
+        } else if (argument == "-o") {
+            options.output = value(argument);
+        } else if (argument == "--format") {
+            options.format = value(argument);
+            if (options.format != "binary" && options.format != "hex" && options.format != "c")
+                usage_error("unknown format " + options.format);
+        } else if (argument == "--listing") {
+            options.listing = true;
+        } else if (argument == "--variables") {
+            options.variables = true;
+        } else if (argument == "--steps") {
+            std::optional<long> steps = parse_integer(value(argument));
+            if (!steps || *steps <= 0)
+                usage_error("--steps needs a positive number");
+            options.steps = static_cast<unsigned long>(*steps);
+        } else if (argument.size() > 1 && argument[0] == '-' && argument != "-") {
+            usage_error("unknown option " + argument);
+        } else if (options.input.empty()) {
+            options.input = argument;
+        } else {
+            usage_error("only one input file is allowed");
+        }
+    }
+    if (options.input.empty())
+        usage_error("no input file");
+    return options;
+}
+
+std::string read_input(const std::string &path)
+{
+    if (path == "-")
+        return std::string(std::istreambuf_iterator<char>(std::cin), {});
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+        usage_error("cannot read " + path);
+    return std::string(std::istreambuf_iterator<char>(file), {});
+}
+
+TargetDescription load_target(const std::string &name)
+{
+    if (std::optional<TargetDescription> preset = target_preset(name))
+        return *preset;
+    TargetReadResult read = read_target_json(read_input(name));
+    if (!read.ok)
+        usage_error(name + ": " + read.error);
+    return read.target;
+}
+
+bool ends_with(const std::string &text, const std::string &suffix)
+{
+    return text.size() >= suffix.size() &&
+           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// An --event value split into name and what follows the colon.
+std::pair<std::string, std::string> split_event(const std::string &option)
+{
+    size_t colon = option.find(':');
+    if (colon == std::string::npos)
+        return { option, "" };
+    return { option.substr(0, colon), option.substr(colon + 1) };
+}
+
+std::vector<int16_t> event_arguments(const std::string &text)
+{
+    std::vector<int16_t> arguments;
+    std::stringstream list(text);
+    std::string item;
+    while (std::getline(list, item, ',')) {
+        std::optional<long> number = parse_integer(item);
+        if (!number || *number < -32768 || *number > 65535)
+            usage_error("bad event argument " + item);
+        arguments.push_back(static_cast<int16_t>(*number));
+    }
+    return arguments;
+}
+
+bool is_declared(const CommonDefinitions &definitions, const std::string &name)
+{
+    for (const auto &event : definitions.events)
+        if (event.name == name)
+            return true;
+    return false;
+}
+
+bool is_local_event(const TargetDescription &target, const std::string &name)
+{
+    for (const auto &event : target.local_events)
+        if (event.name == name)
+            return true;
+    return false;
+}
+
+void write_bytecode(const Options &options, const std::vector<uint16_t> &bytecode)
+{
+    std::string data;
+    if (options.format == "binary") {
+        for (uint16_t word : bytecode) {
+            data += static_cast<char>(word & 0xFF);
+            data += static_cast<char>(word >> 8);
+        }
+    } else if (options.format == "hex") {
+        char text[16];
+        for (uint16_t word : bytecode) {
+            std::snprintf(text, sizeof text, "0x%04x\n", word);
+            data += text;
+        }
+    } else {
+        char text[16];
+        data = "// Aseba bytecode, " + std::to_string(bytecode.size()) + " words\n";
+        data += "const unsigned short aseba_bytecode[" + std::to_string(bytecode.size()) + "] = {";
+        for (size_t i = 0; i < bytecode.size(); ++i) {
+            std::snprintf(text, sizeof text, "0x%04x,", bytecode[i]);
+            data += (i % 8 == 0 ? "\n    " : " ") + std::string(text);
+        }
+        data += "\n};\n";
+    }
+    if (options.output == "-") {
+        std::cout << data;
+        return;
+    }
+    std::ofstream file(options.output, std::ios::binary);
+    if (!file || !(file << data))
+        usage_error("cannot write " + options.output);
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    Options options = parse_options(argc, argv);
+    TargetDescription target = load_target(options.target);
+    std::string text = read_input(options.input);
+    std::string file_name = options.input == "-" ? "<stdin>" : options.input;
+
+    CommonDefinitions definitions;
+    std::string source = text;
+    unsigned line_offset = 0;
+    unsigned column_offset = 0;
+    if (ends_with(options.input, ".aesl")) {
+        AeslReadResult project = read_aesl(text);
+        if (!project.ok) {
+            std::cerr << file_name << ":" << project.error_line << ": error: " << project.error
+                      << "\n";
+            return EXIT_USAGE;
+        }
+        definitions = project.project.definitions;
+        const AeslNode *chosen = nullptr;
+        for (const auto &node : project.project.nodes)
+            if (chosen == nullptr && (options.node.empty() || node.name == options.node))
+                chosen = &node;
+        if (chosen == nullptr)
+            usage_error(options.node.empty() ? "the project has no node"
+                                             : "the project has no node " + options.node);
+        source = chosen->source;
+        line_offset = chosen->first_line - 1;
+        column_offset = chosen->first_column;
+    }
+
+    std::vector<EventToSend> to_send;
+    for (const auto &option : options.event_options) {
+        auto [name, rest] = split_event(option);
+        if (options.run) {
+            std::vector<int16_t> arguments = event_arguments(rest);
+            if (!is_declared(definitions, name) && !is_local_event(target, name))
+                definitions.events.push_back({ name, static_cast<uint16_t>(arguments.size()) });
+            to_send.push_back({ name, arguments });
+            continue;
+        }
+        std::optional<long> size = rest.empty() ? 0 : parse_integer(rest);
+        if (!size || *size < 0 || *size > 258)
+            usage_error("bad event size in --event " + option);
+        definitions.events.push_back({ name, static_cast<uint16_t>(*size) });
+    }
+    for (const auto &option : options.constant_options) {
+        size_t equal = option.find('=');
+        std::optional<long> value =
+          equal == std::string::npos ? std::nullopt : parse_integer(option.substr(equal + 1));
+        if (!value || *value < -32768 || *value > 32767)
+            usage_error("--constant needs NAME=VALUE with a 16-bit value");
+        definitions.constants.push_back({ option.substr(0, equal), static_cast<int16_t>(*value) });
+    }
+
+    CompileResult result = compile(source, target, definitions);
+    if (!result.ok) {
+        std::cerr << format_error(file_name, source, result.error, line_offset, column_offset);
+        return 1;
+    }
+
+    if (options.run) {
+        std::string report, error;
+        if (!run_program(result, target, definitions, to_send, options.steps, report, error))
+            usage_error(error);
+        std::cout << report;
+        return 0;
+    }
+    if (!options.output.empty())
+        write_bytecode(options, result.bytecode);
+    if (options.listing)
+        std::cout << listing(result.bytecode, result.line_of_word, source);
+    if (options.variables) {
+        std::printf("%-24s %7s %5s\n", "variable", "address", "size");
+        for (const auto &variable : result.variables)
+            std::printf("%-24s %7u %5u\n", variable.name.c_str(), variable.address, variable.size);
+        std::printf(
+          "%u of %u words used by variables\n", result.allocated_variables, target.variables_size);
+    }
+    if (options.output.empty() && !options.listing && !options.variables)
+        std::cout << file_name << ": " << result.bytecode.size() << " of " << target.bytecode_size
+                  << " words of bytecode, " << result.allocated_variables << " of "
+                  << target.variables_size << " words of variables\n";
+    return 0;
+}

@@ -1,0 +1,32 @@
+// `asebac run`: executes compiled bytecode on the host VM and reports the
+// variables, emitted events and run-time errors as JSON.
+
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tools/compiler/compiler.hpp"
+
+namespace aseba
+{
+
+struct EventToSend {
+    std::string name;
+    std::vector<int16_t> arguments;
+};
+
+// Loads `compiled` into a VM for `target`, runs init and then `events` in
+// order, each for at most `step_budget` instructions, and returns the JSON
+// report. Fails (returns false, `error` set) if the target has a native the
+// host has no implementation for, or an event is unknown.
+bool run_program(const CompileResult &compiled,
+                 const TargetDescription &target,
+                 const CommonDefinitions &definitions,
+                 const std::vector<EventToSend> &events,
+                 unsigned long step_budget,
+                 std::string &report,
+                 std::string &error);
+
+} // namespace aseba

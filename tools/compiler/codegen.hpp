@@ -1,0 +1,44 @@
+// Code generation (language.md §8), the stack-depth check (§11.3) and the
+// linker (§10).
+
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "compilation.hpp"
+
+namespace aseba
+{
+
+struct Instruction {
+    std::vector<uint16_t> words;
+    unsigned line = 0;
+    int subroutine = -1; // SUB_CALL: index of the called subroutine, patched by the linker
+};
+
+using Code = std::vector<Instruction>;
+
+// The code of one event handler or subroutine before linking.
+struct Section {
+    bool is_subroutine = false;
+    unsigned event_id = 0;   // events
+    unsigned subroutine = 0; // subroutines: index in definition order
+    Code code;
+    unsigned stack_depth = 0;     // deepest statement
+    std::vector<unsigned> called; // subroutines called from this section
+    unsigned last_line = 0;
+};
+
+// The sections of the optimised `program`: init first, then one per
+// `onevent`/`sub` marker in source order.
+std::vector<Section> generate_code(const Node &program, const Compilation &compilation);
+
+// Throws the stack overflow error if a handler or subroutine may overflow
+// the target's stack.
+void check_stack(const std::vector<Section> &sections, const Compilation &compilation);
+
+// Lays out the event table, handlers and subroutines (§10) into `result`.
+void link(std::vector<Section> sections, const Compilation &compilation, CompileResult &result);
+
+} // namespace aseba

@@ -1,0 +1,393 @@
+// The lexer of language.md §2. Positions reproduce the reference's counting
+// (§11.1): tabs in comments count 4 columns, the line after a `#` comment
+// starts one column late, and the end of stream sits at column 0 after a
+// final line break.
+
+#include "lexer.hpp"
+
+#include <locale>
+#include <map>
+
+#include "diagnostics.hpp"
+
+namespace aseba
+{
+
+namespace
+{
+
+constexpr unsigned TAB_WIDTH_IN_COMMENTS = 4;
+constexpr int64_t LITERAL_LIMIT = 65536;         // literals must be below this in any base
+constexpr int64_t INT16_LIMIT = 32768;           // hex and binary literals above wrap negative
+constexpr int64_t SATURATED_LITERAL = 1LL << 40; // keeps huge spellings from overflowing
+
+const std::map<std::string, TokenType, std::less<>> keywords = {
+    { "when", TokenType::WHEN },
+    { "emit", TokenType::EMIT },
+    { "_emit", TokenType::HIDDEN_EMIT },
+    { "for", TokenType::FOR },
+    { "in", TokenType::IN },
+    { "step", TokenType::STEP },
+    { "while", TokenType::WHILE },
+    { "do", TokenType::DO },
+    { "if", TokenType::IF },
+    { "then", TokenType::THEN },
+    { "else", TokenType::ELSE },
+    { "elseif", TokenType::ELSEIF },
+    { "end", TokenType::END },
+    { "var", TokenType::VAR },
+    { "const", TokenType::CONST },
+    { "call", TokenType::CALL },
+    { "sub", TokenType::SUB },
+    { "callsub", TokenType::CALLSUB },
+    { "onevent", TokenType::ONEVENT },
+    { "abs", TokenType::ABS },
+    { "return", TokenType::RETURN },
+    { "or", TokenType::OR },
+    { "and", TokenType::AND },
+    { "not", TokenType::NOT },
+};
+
+// Letters and digits as the reference sees them (its en_US.UTF-8 locale);
+// plain ASCII rules if that locale is not installed.
+bool is_alphanumeric(char32_t c)
+{
+    if (c < 0x80)
+        return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    static const std::ctype<wchar_t> *classifier = []() -> const std::ctype<wchar_t> * {
+        try {
+            static const std::locale locale("en_US.UTF-8");
+            return &std::use_facet<std::ctype<wchar_t>>(locale);
+        } catch (const std::exception &) {
+            return nullptr;
+        }
+    }();
+    if (classifier == nullptr)
+        return c >= 0xC0; // without the locale, take non-ASCII text as letters
+    return classifier->is(std::ctype_base::alnum, static_cast<wchar_t>(c));
+}
+
+bool is_word_start(char32_t c)
+{
+    return c == '_' || is_alphanumeric(c);
+}
+
+bool is_word_continuation(char32_t c)
+{
+    return c == '_' || c == '.' || is_alphanumeric(c);
+}
+
+int digit_value(char32_t c)
+{
+    if (c >= '0' && c <= '9')
+        return static_cast<int>(c - '0');
+    if (c >= 'a' && c <= 'f')
+        return static_cast<int>(c - 'a' + 10);
+    if (c >= 'A' && c <= 'F')
+        return static_cast<int>(c - 'A' + 10);
+    return -1;
+}
+
+std::string out_of_range_message(int64_t value)
+{
+    return "Integer value " + std::to_string(value) + " out of [-32768;32767] range";
+}
+
+class Lexer
+{
+  public:
+    explicit Lexer(std::string_view source)
+      : text(decode_utf8(source))
+    {
+    }
+
+    std::vector<Token> run()
+    {
+        std::vector<Token> tokens;
+        while (index < text.size()) {
+            char32_t c = text[index];
+            if (c == ' ' || c == '\t') {
+                advance();
+            } else if (c == '\n') {
+                ++index;
+                ++line;
+                column = 0;
+            } else if (c == '\r') {
+                ++index;
+                column = 0;
+            } else if (c == '#') {
+                skip_comment();
+            } else {
+                tokens.push_back(read_token());
+            }
+        }
+        Token end;
+        end.type = TokenType::END_OF_STREAM;
+        end.position = { line, column + (ended_in_line_comment ? 1u : 0u) };
+        tokens.push_back(end);
+        return tokens;
+    }
+
+  private:
+    std::u32string text;
+    size_t index = 0;
+    unsigned line = 1;
+    unsigned column = 0; // columns used so far on this line
+    bool ended_in_line_comment = false;
+
+    char32_t peek(size_t offset = 0) const
+    {
+        return index + offset < text.size() ? text[index + offset] : 0;
+    }
+
+    void advance()
+    {
+        ++index;
+        ++column;
+    }
+
+    // Skips a character inside a comment, counting positions as the
+    // reference does.
+    void skip_comment_character()
+    {
+        char32_t c = text[index++];
+        if (c == '\n') {
+            ++line;
+            column = 0;
+        } else if (c == '\r') {
+            column = 0;
+        } else if (c == '\t') {
+            column += TAB_WIDTH_IN_COMMENTS;
+        } else {
+            ++column;
+        }
+    }
+
+    void skip_comment()
+    {
+        SourcePosition start{ line, column + 1 };
+        if (peek(1) == '*') {
+            advance();
+            advance();
+            while (true) {
+                if (index >= text.size())
+                    fail(start, "Unbalanced comment block");
+                if (peek() == '*' && peek(1) == '#') {
+                    advance();
+                    advance();
+                    return;
+                }
+                skip_comment_character();
+            }
+        }
+        advance();
+        while (index < text.size() && peek() != '\n' && peek() != '\r')
+            skip_comment_character();
+        if (index >= text.size()) {
+            ended_in_line_comment = true;
+            return;
+        }
+        // The reference starts the following line one column late.
+        if (peek() == '\n')
+            ++line;
+        ++index;
+        column = 1;
+    }
+
+    Token read_token()
+    {
+        Token token;
+        token.position = { line, column + 1 };
+        char32_t c = peek();
+        if (is_word_start(c)) {
+            size_t start = index;
+            while (index < text.size() && is_word_continuation(peek()))
+                advance();
+            std::u32string word = text.substr(start, index - start);
+            token.text = encode_utf8(word);
+            if (c >= '0' && c <= '9') {
+                token.type = TokenType::INTEGER;
+                token.value = number_value(word, token.position);
+            } else {
+                auto keyword = keywords.find(token.text);
+                token.type = keyword != keywords.end() ? keyword->second : TokenType::IDENTIFIER;
+            }
+            return token;
+        }
+        token.type = read_symbol(token.position);
+        if (token.type == TokenType::SHIFT_LEFT || token.type == TokenType::SHIFT_RIGHT ||
+            token.type == TokenType::SHIFT_LEFT_EQUAL || token.type == TokenType::SHIFT_RIGHT_EQUAL)
+            ++token.position.column; // the reference places shifts on their second character
+        return token;
+    }
+
+    // The value of a number word; hex and binary above 32767 wrap negative.
+    static int32_t number_value(const std::u32string &word, SourcePosition position)
+    {
+        int base = 10;
+        size_t first_digit = 0;
+        const char *base_error = "Error in number";
+        if (word.size() > 1 && word[0] == '0' && word[1] == 'x') {
+            base = 16;
+            first_digit = 2;
+            base_error = "Error in hexadecimal number";
+        } else if (word.size() > 1 && word[0] == '0' && word[1] == 'b') {
+            base = 2;
+            first_digit = 2;
+            base_error = "Error in binary number";
+        } else if (word.size() > 1 && word[0] == '0' && !(word[1] >= '0' && word[1] <= '9')) {
+            fail(position, "Error in number, invalid base");
+        }
+        int64_t value = 0;
+        for (size_t i = first_digit; i < word.size(); ++i) {
+            int digit = digit_value(word[i]);
+            if (digit < 0 || digit >= base)
+                fail(position, base_error);
+            value = value * base + digit;
+            if (value > SATURATED_LITERAL)
+                value = SATURATED_LITERAL;
+        }
+        if (value >= LITERAL_LIMIT)
+            fail(position, out_of_range_message(value));
+        if (base != 10 && value >= INT16_LIMIT)
+            value -= LITERAL_LIMIT;
+        return static_cast<int32_t>(value);
+    }
+
+    // Reads punctuation and operators, longest match first.
+    TokenType read_symbol(SourcePosition position)
+    {
+        char32_t c = peek();
+        char32_t next = peek(1);
+        char32_t after = peek(2);
+        auto take = [this](unsigned count, TokenType type) {
+            for (unsigned i = 0; i < count; ++i)
+                advance();
+            return type;
+        };
+        switch (c) {
+        case '(': return take(1, TokenType::PAREN_OPEN);
+        case ')': return take(1, TokenType::PAREN_CLOSE);
+        case '[': return take(1, TokenType::BRACKET_OPEN);
+        case ']': return take(1, TokenType::BRACKET_CLOSE);
+        case ':': return take(1, TokenType::COLON);
+        case ',': return take(1, TokenType::COMMA);
+        case '~': return take(1, TokenType::BIT_NOT);
+        case '=': return next == '=' ? take(2, TokenType::EQUAL) : take(1, TokenType::ASSIGN);
+        case '!':
+            if (next == '=')
+                return take(2, TokenType::NOT_EQUAL);
+            fail(position, "Syntax error");
+        case '<':
+            if (next == '<')
+                return after == '=' ? take(3, TokenType::SHIFT_LEFT_EQUAL)
+                                    : take(2, TokenType::SHIFT_LEFT);
+            return next == '=' ? take(2, TokenType::SMALLER_EQUAL) : take(1, TokenType::SMALLER);
+        case '>':
+            if (next == '>')
+                return after == '=' ? take(3, TokenType::SHIFT_RIGHT_EQUAL)
+                                    : take(2, TokenType::SHIFT_RIGHT);
+            return next == '=' ? take(2, TokenType::BIGGER_EQUAL) : take(1, TokenType::BIGGER);
+        case '+':
+            if (next == '+')
+                return take(2, TokenType::PLUS_PLUS);
+            return next == '=' ? take(2, TokenType::PLUS_EQUAL) : take(1, TokenType::PLUS);
+        case '-':
+            if (next == '-')
+                return take(2, TokenType::MINUS_MINUS);
+            return next == '=' ? take(2, TokenType::MINUS_EQUAL) : take(1, TokenType::MINUS);
+        case '*': return next == '=' ? take(2, TokenType::MULT_EQUAL) : take(1, TokenType::MULT);
+        case '/': return next == '=' ? take(2, TokenType::DIV_EQUAL) : take(1, TokenType::DIV);
+        case '%': return next == '=' ? take(2, TokenType::MOD_EQUAL) : take(1, TokenType::MOD);
+        case '|':
+            return next == '=' ? take(2, TokenType::BIT_OR_EQUAL) : take(1, TokenType::BIT_OR);
+        case '^':
+            return next == '=' ? take(2, TokenType::BIT_XOR_EQUAL) : take(1, TokenType::BIT_XOR);
+        case '&':
+            return next == '=' ? take(2, TokenType::BIT_AND_EQUAL) : take(1, TokenType::BIT_AND);
+        default: break;
+        }
+        char hex[16];
+        snprintf(hex, sizeof hex, "%x", static_cast<unsigned>(c));
+        fail(position,
+             std::string("Identifiers must begin with _ or an alphanumeric character, "
+                         "found unicode character 0x") +
+               hex + " instead");
+    }
+};
+
+} // namespace
+
+const char *token_type_name(TokenType type)
+{
+    switch (type) {
+#define ASEBA_TOKEN_NAME(identifier, name)                                                         \
+    case TokenType::identifier: return name;
+        ASEBA_TOKEN_LIST(ASEBA_TOKEN_NAME)
+#undef ASEBA_TOKEN_NAME
+    }
+    return "?";
+}
+
+std::vector<Token> tokenize(std::string_view source)
+{
+    return Lexer(source).run();
+}
+
+std::u32string decode_utf8(std::string_view text)
+{
+    std::u32string result;
+    result.reserve(text.size());
+    size_t i = 0;
+    while (i < text.size()) {
+        auto byte = static_cast<unsigned char>(text[i]);
+        unsigned length = byte < 0x80           ? 1
+                          : (byte >> 5) == 0x6  ? 2
+                          : (byte >> 4) == 0xE  ? 3
+                          : (byte >> 3) == 0x1E ? 4
+                                                : 0;
+        char32_t code = length == 1   ? byte
+                        : length == 2 ? (byte & 0x1F)
+                        : length == 3 ? (byte & 0x0F)
+                                      : (byte & 0x07);
+        bool valid = length != 0 && i + length <= text.size();
+        for (unsigned k = 1; valid && k < length; ++k) {
+            auto continuation = static_cast<unsigned char>(text[i + k]);
+            valid = (continuation & 0xC0) == 0x80;
+            code = (code << 6) | (continuation & 0x3F);
+        }
+        if (!valid) {
+            result.push_back(byte); // Latin-1 fallback keeps every input readable
+            ++i;
+        } else {
+            result.push_back(code);
+            i += length;
+        }
+    }
+    return result;
+}
+
+std::string encode_utf8(std::u32string_view text)
+{
+    std::string result;
+    for (char32_t c : text) {
+        if (c < 0x80) {
+            result.push_back(static_cast<char>(c));
+        } else if (c < 0x800) {
+            result.push_back(static_cast<char>(0xC0 | (c >> 6)));
+            result.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+        } else if (c < 0x10000) {
+            result.push_back(static_cast<char>(0xE0 | (c >> 12)));
+            result.push_back(static_cast<char>(0x80 | ((c >> 6) & 0x3F)));
+            result.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+        } else {
+            result.push_back(static_cast<char>(0xF0 | (c >> 18)));
+            result.push_back(static_cast<char>(0x80 | ((c >> 12) & 0x3F)));
+            result.push_back(static_cast<char>(0x80 | ((c >> 6) & 0x3F)));
+            result.push_back(static_cast<char>(0x80 | (c & 0x3F)));
+        }
+    }
+    return result;
+}
+
+} // namespace aseba

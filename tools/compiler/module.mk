@@ -1,0 +1,19 @@
+# The Aseba compiler library: source text and a target description in,
+# bytecode out (language.md), plus target presets, project files, error
+# rendering and the disassembler shared with the other host tools.
+LIBRARIES += aseba_compiler
+aseba_compiler_SOURCES := \
+    tools/compiler/lexer.cpp \
+    tools/compiler/parser.cpp \
+    tools/compiler/compilation.cpp \
+    tools/compiler/analysis.cpp \
+    tools/compiler/optimizer.cpp \
+    tools/compiler/codegen.cpp \
+    tools/compiler/linker.cpp \
+    tools/compiler/compiler.cpp \
+    tools/compiler/target_presets.cpp \
+    tools/compiler/target_json.cpp \
+    tools/compiler/aesl.cpp \
+    tools/compiler/disassembler.cpp \
+    tools/compiler/error_format.cpp \
+    tools/compiler/program_file.cpp
