@@ -28,8 +28,8 @@ std::string read_file(const std::string &path)
 
 TEST(PaperDialect, AnnexCompilesForEpuck)
 {
-    std::string source = read_file("../shared/examples/paper-annex.aseba");
-    ASSERT_FALSE(source.empty()) << "needs ../shared/examples/paper-annex.aseba";
+    std::string source = read_file("examples/paper-annex.aseba");
+    ASSERT_FALSE(source.empty()) << "needs examples/paper-annex.aseba";
     CommonDefinitions definitions;
     definitions.events = { { "bad", 1 } };
     CompileResult result = compile(source, epuck_target(), definitions);
