@@ -4,7 +4,10 @@
 // out-of-bounds access or undefined behaviour aborts the test; the driver
 // checks the VM's invariants and the guard words around its arrays.
 
+#include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -183,3 +186,20 @@ TEST(VmFuzz, BytesDecodeIntoCasesThatRun)
 }
 
 } // namespace
+
+// Inputs the libFuzzer target once found (tests/fuzz/regressions/vm/) stay
+// fixed: each must now run with every invariant kept.
+TEST(VmFuzz, FoundInputsStayFixed)
+{
+    const std::filesystem::path folder = "tests/fuzz/regressions/vm";
+    ASSERT_TRUE(std::filesystem::is_directory(folder)) << "run the tests from the repository root";
+    unsigned inputs = 0;
+    for (const auto &entry : std::filesystem::directory_iterator(folder)) {
+        std::ifstream file(entry.path(), std::ios::binary);
+        std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)), {});
+        vm_tests::FuzzCase fuzz_case = vm_tests::fuzz_case_from_bytes(bytes.data(), bytes.size());
+        EXPECT_EQ(vm_tests::run_fuzz_case(fuzz_case), "") << entry.path();
+        inputs++;
+    }
+    EXPECT_GT(inputs, 0u);
+}
