@@ -1,23 +1,112 @@
-// The host board's hal.h functions: a clock set by the host and a link made
-// of a receive ring and an output callback.
+// The host board's clock and scheduler, its link (a receive ring and an
+// output callback), interrupt masking, reset and idle.
 
 #include "host_board.h"
+
+#include <string.h>
+
+#define MILLISECONDS_PER_SECOND 1000u
+#define MICROSECONDS_PER_SECOND 1000000u
 
 void host_board_init(hal_board *board,
                      void (*link_output)(void *context, const uint8_t *bytes, uint16_t count),
                      void *link_context)
 {
-    board->milliseconds = 0;
-    board->receive_start = 0;
-    board->receive_count = 0;
+    uint32_t i;
+
+    memset(board, 0, sizeof *board);
     board->link_output = link_output;
     board->link_context = link_context;
+    board->world = host_world_flat();
+    board->power_cut_at = HOST_NO_POWER_CUT;
+    for (i = 0; i < HAL_EEPROM_WORDS; i++)
+        board->eeprom[i] = HAL_EEPROM_ERASED;
+    for (i = 0; i < HOST_FLASH_WORDS; i++)
+        board->flash[i] = HAL_FLASH_ERASED;
+}
+
+void host_board_set_world(hal_board *board, const host_world *world)
+{
+    uint16_t pin;
+
+    board->world = world;
+    for (pin = HAL_PIN_FIRST_INPUT; pin < HAL_PIN_COUNT; pin++)
+        board->last_input[pin] = world->pin_read(world->context, (hal_pin)pin, board->cycles);
+}
+
+uint64_t host_board_cycles(const hal_board *board)
+{
+    return board->cycles;
+}
+
+// The earliest due event at or before `until`: -1 none, HAL_TIMER_COUNT the
+// ADC scan, else a timer.
+static int16_t next_event(const hal_board *board, uint64_t until, uint64_t *due)
+{
+    int16_t chosen = -1;
+    int16_t i;
+
+    if (board->adc_scan_mask != 0 && board->adc_next_due <= until) {
+        chosen = HAL_TIMER_COUNT;
+        *due = board->adc_next_due;
+    }
+    for (i = 0; i < HAL_TIMER_COUNT; i++) {
+        const host_periodic *timer = &board->timers[i];
+        if (timer->running && timer->next_due <= until && (chosen < 0 || timer->next_due < *due)) {
+            chosen = i;
+            *due = timer->next_due;
+        }
+    }
+    return chosen;
+}
+
+// Defined in host_peripherals.c: runs one ADC scan.
+void host_board_run_adc_scan(hal_board *board);
+
+void host_board_advance(hal_board *board, uint64_t cycles)
+{
+    uint64_t until = board->cycles + cycles;
+    uint64_t due = 0;
+    int16_t event;
+
+    while ((event = next_event(board, until, &due)) >= 0) {
+        board->cycles = due;
+        if (event == HAL_TIMER_COUNT) {
+            host_board_run_adc_scan(board);
+        } else {
+            host_periodic *timer = &board->timers[event];
+            timer->next_due += timer->period;
+            if (timer->callback)
+                timer->callback(timer->context);
+        }
+    }
+    board->cycles = until;
 }
 
 void host_board_set_time(hal_board *board, uint32_t milliseconds)
 {
-    if ((int32_t)(milliseconds - board->milliseconds) > 0)
-        board->milliseconds = milliseconds;
+    uint32_t ahead = milliseconds - hal_milliseconds(board);
+    uint64_t target;
+
+    if ((int32_t)ahead <= 0)
+        return;
+    // The cycle at which hal_milliseconds reaches `milliseconds`.
+    target = ((uint64_t)board->cycles * MILLISECONDS_PER_SECOND / HOST_CYCLES_PER_SECOND + ahead) *
+             HOST_CYCLES_PER_SECOND;
+    target = (target + MILLISECONDS_PER_SECOND - 1u) / MILLISECONDS_PER_SECOND;
+    host_board_advance(board, target - board->cycles);
+}
+
+uint32_t hal_milliseconds(hal_board *board)
+{
+    return (uint32_t)(board->cycles * MILLISECONDS_PER_SECOND / HOST_CYCLES_PER_SECOND);
+}
+
+void hal_delay_microseconds(hal_board *board, uint16_t microseconds)
+{
+    // Simulated time moves only when the host says so.
+    (void)board;
+    (void)microseconds;
 }
 
 uint16_t host_board_link_room(const hal_board *board)
@@ -40,11 +129,6 @@ bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t co
     return true;
 }
 
-uint32_t hal_milliseconds(hal_board *board)
-{
-    return board->milliseconds;
-}
-
 uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
 {
     uint16_t count = 0;
@@ -61,6 +145,61 @@ void hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)
 {
     if (board->link_output)
         board->link_output(board->link_context, bytes, count);
+}
+
+bool hal_timer_start(hal_board *board,
+                     hal_timer timer,
+                     uint32_t period_microseconds,
+                     hal_callback callback,
+                     void *context)
+{
+    host_periodic *slot;
+    uint64_t period;
+
+    if ((uint16_t)timer >= HAL_TIMER_COUNT || period_microseconds < HAL_TIMER_MIN_PERIOD_US ||
+        period_microseconds > HAL_TIMER_MAX_PERIOD_US)
+        return false;
+    // The period in cycles, rounded to the nearest.
+    period =
+      ((uint64_t)period_microseconds * HOST_CYCLES_PER_SECOND + MICROSECONDS_PER_SECOND / 2u) /
+      MICROSECONDS_PER_SECOND;
+    slot = &board->timers[timer];
+    slot->callback = callback;
+    slot->context = context;
+    slot->period = period;
+    slot->next_due = board->cycles + period;
+    slot->running = true;
+    return true;
+}
+
+void hal_timer_stop(hal_board *board, hal_timer timer)
+{
+    if ((uint16_t)timer < HAL_TIMER_COUNT)
+        board->timers[timer].running = false;
+}
+
+hal_critical_state hal_critical_enter(hal_board *board)
+{
+    // Callbacks run only inside host_board_advance, never in the middle of
+    // firmware code, so the depth is bookkeeping.
+    return board->critical_depth++;
+}
+
+void hal_critical_leave(hal_board *board, hal_critical_state state)
+{
+    board->critical_depth = state;
+}
+
+void hal_reset(hal_board *board)
+{
+    board->reset_requested = true;
+}
+
+bool host_board_take_reset(hal_board *board)
+{
+    bool requested = board->reset_requested;
+    board->reset_requested = false;
+    return requested;
 }
 
 void hal_idle(hal_board *board)

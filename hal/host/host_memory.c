@@ -1,0 +1,171 @@
+// The host board's data EEPROM and program flash: NOR semantics (an erase
+// sets every bit, a write can only clear bits), the chip's sizes and row
+// layout, power cuts at a chosen operation, and saving to a file.
+
+#include "host_board.h"
+
+#include <stdio.h>
+
+#define INSTRUCTION_MASK  0xFFFFFFul
+#define WORD_ADDRESS_STEP 2u // PC units per instruction
+#define INSTRUCTION_BYTES 3u // in the memory file, little-endian
+#define EEPROM_WORD_BYTES 2u
+#define BITS_PER_BYTE     8u
+#define BYTE_MASK         0xFFu
+
+// Counts one erase/write; false when power is off or goes off now (`*cut`
+// then says the operation is the interrupted one).
+static bool start_operation(hal_board *board, bool *cut)
+{
+    *cut = false;
+    if (board->powered_off)
+        return false;
+    board->memory_operations++;
+    if (board->power_cut_at != HOST_NO_POWER_CUT &&
+        (long)board->memory_operations == board->power_cut_at) {
+        board->powered_off = true;
+        *cut = true;
+        return false;
+    }
+    return true;
+}
+
+void host_board_cut_power_at(hal_board *board, uint32_t count)
+{
+    board->power_cut_at = (long)(board->memory_operations + count);
+}
+
+void host_board_restore_power(hal_board *board)
+{
+    board->powered_off = false;
+    board->power_cut_at = HOST_NO_POWER_CUT;
+}
+
+uint16_t hal_eeprom_read(hal_board *board, uint16_t index)
+{
+    if (index >= HAL_EEPROM_WORDS)
+        return HAL_EEPROM_ERASED;
+    return board->eeprom[index];
+}
+
+bool hal_eeprom_erase_word(hal_board *board, uint16_t index)
+{
+    bool cut;
+    if (index >= HAL_EEPROM_WORDS || !start_operation(board, &cut))
+        return false;
+    board->eeprom[index] = HAL_EEPROM_ERASED;
+    return true;
+}
+
+bool hal_eeprom_write_word(hal_board *board, uint16_t index, uint16_t value)
+{
+    bool cut;
+    if (index >= HAL_EEPROM_WORDS || !start_operation(board, &cut))
+        return false;
+    board->eeprom[index] &= value;
+    return true;
+}
+
+static bool valid_row(uint32_t row_address)
+{
+    return row_address < HAL_FLASH_END && row_address % HAL_FLASH_ROW_SPAN == 0;
+}
+
+uint32_t hal_flash_read(hal_board *board, uint32_t address)
+{
+    if (address >= HAL_FLASH_END || address % WORD_ADDRESS_STEP != 0)
+        return 0;
+    return board->flash[address / WORD_ADDRESS_STEP];
+}
+
+bool hal_flash_erase_row(hal_board *board, uint32_t row_address)
+{
+    uint32_t first = row_address / WORD_ADDRESS_STEP;
+    uint16_t count = HAL_FLASH_ROW_INSTRUCTIONS;
+    uint16_t i;
+    bool cut;
+    bool ok;
+
+    if (!valid_row(row_address))
+        return false;
+    ok = start_operation(board, &cut);
+    if (!ok && !cut)
+        return false;
+    if (cut)
+        count = HAL_FLASH_ROW_INSTRUCTIONS / 2u;
+    for (i = 0; i < count; i++)
+        board->flash[first + i] = HAL_FLASH_ERASED;
+    return ok;
+}
+
+bool hal_flash_write_row(hal_board *board, uint32_t row_address, const uint32_t *instructions)
+{
+    uint32_t first = row_address / WORD_ADDRESS_STEP;
+    uint16_t count = HAL_FLASH_ROW_INSTRUCTIONS;
+    uint16_t i;
+    bool cut;
+    bool ok;
+
+    if (!valid_row(row_address))
+        return false;
+    ok = start_operation(board, &cut);
+    if (!ok && !cut)
+        return false;
+    if (cut)
+        count = HAL_FLASH_ROW_INSTRUCTIONS / 2u;
+    for (i = 0; i < count; i++)
+        board->flash[first + i] &= instructions[i] & INSTRUCTION_MASK;
+    return ok;
+}
+
+// The file: every EEPROM word (2 bytes), then every flash instruction (3
+// bytes), little-endian.
+bool host_board_save_memory(const hal_board *board, const char *path)
+{
+    FILE *file = fopen(path, "wb");
+    uint32_t i;
+    uint16_t b;
+    bool ok = file != NULL;
+
+    for (i = 0; ok && i < HAL_EEPROM_WORDS; i++) {
+        for (b = 0; b < EEPROM_WORD_BYTES; b++)
+            ok = fputc((int)((board->eeprom[i] >> (BITS_PER_BYTE * b)) & BYTE_MASK), file) != EOF;
+    }
+    for (i = 0; ok && i < HOST_FLASH_WORDS; i++) {
+        for (b = 0; ok && b < INSTRUCTION_BYTES; b++)
+            ok = fputc((int)((board->flash[i] >> (BITS_PER_BYTE * b)) & BYTE_MASK), file) != EOF;
+    }
+    if (file != NULL && fclose(file) != 0)
+        ok = false;
+    return ok;
+}
+
+bool host_board_load_memory(hal_board *board, const char *path)
+{
+    static const long expected =
+      (long)HAL_EEPROM_WORDS * EEPROM_WORD_BYTES + (long)HOST_FLASH_WORDS * INSTRUCTION_BYTES;
+    FILE *file = fopen(path, "rb");
+    uint32_t i;
+    uint16_t b;
+
+    if (file == NULL)
+        return false;
+    if (fseek(file, 0, SEEK_END) != 0 || ftell(file) != expected || fseek(file, 0, SEEK_SET) != 0) {
+        fclose(file);
+        return false;
+    }
+    for (i = 0; i < HAL_EEPROM_WORDS; i++) {
+        uint16_t word = 0;
+        for (b = 0; b < EEPROM_WORD_BYTES; b++)
+            word = (uint16_t)(word | ((uint16_t)(fgetc(file) & BYTE_MASK) << (BITS_PER_BYTE * b)));
+        board->eeprom[i] = word;
+    }
+    for (i = 0; i < HOST_FLASH_WORDS; i++) {
+        uint32_t instruction = 0;
+        for (b = 0; b < INSTRUCTION_BYTES; b++)
+            instruction |= (uint32_t)(fgetc(file) & BYTE_MASK) << (BITS_PER_BYTE * b);
+        board->flash[i] = instruction;
+    }
+    fclose(file);
+    return true;
+}

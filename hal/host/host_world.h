@@ -1,0 +1,48 @@
+// What a simulated e-puck's pins see: the world around the robot, behind a
+// table of functions so that a simulator (Enki) can plug in its own. The
+// flat world stands for a still robot on an empty, evenly lit floor.
+//
+// Times are processor cycles since the board started (HOST_CYCLES_PER_SECOND
+// of them a second), so that the world sees exactly when the firmware
+// samples.
+
+#ifndef HOST_WORLD_H
+#define HOST_WORLD_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "hal/hal.h"
+
+#define HOST_CYCLES_PER_SECOND DSPIC30_FCY_HZ
+
+typedef struct host_world {
+    // Passed back to every function.
+    void *context;
+    // The value 0..4095 analog input `channel` converts to at time `cycle`.
+    uint16_t (*adc_read)(void *context, uint8_t channel, uint64_t cycle);
+    // The level of input pin `pin` at time `cycle`.
+    bool (*pin_read)(void *context, hal_pin pin, uint64_t cycle);
+    // Output pin `pin` now drives `high` (LEDs, motor phases, IR pulses...).
+    void (*pin_written)(void *context, hal_pin pin, bool high, uint64_t cycle);
+    // An I2C write/read of `count` bytes at register `reg` of the device at
+    // 8-bit address `device`; false when no device acknowledges.
+    bool (
+      *i2c_write)(void *context, uint8_t device, uint8_t reg, const uint8_t *bytes, uint16_t count);
+    bool (*i2c_read)(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count);
+    // Byte `index` the camera sends on row `row` of its window.
+    uint8_t (*camera_byte)(void *context, uint16_t row, uint16_t index, uint64_t cycle);
+} host_world;
+
+// Neutral values of the flat world.
+#define HOST_FLAT_MICROPHONE      2048u          // silence: the middle of the range
+#define HOST_FLAT_ACCELERATION_XY 2048u          // zero g (§3.3)
+#define HOST_FLAT_ACCELERATION_Z  (2048u + 768u) // one g: upright and still (§3.3)
+#define HOST_FLAT_PROXIMITY       3800u          // an unlit phototransistor, no reflection
+#define HOST_FLAT_OTHER_INPUT     0u
+
+// The flat world: the values above whatever the outputs do, selector at 0,
+// battery fine, remote silent (high), no I2C device, a black camera.
+const host_world *host_world_flat(void);
+
+#endif

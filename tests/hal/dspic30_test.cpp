@@ -1,0 +1,442 @@
+// hal/dspic30 on the simulated chip: each routine's register values against
+// the fact sheet's numbers (written here as the sheet gives them, not taken
+// from the HAL's constants), and the UART, ADC, I2C and flash/EEPROM paths
+// end to end.
+
+#include "simulated_chip.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+extern "C" {
+#include "hal/dspic30/dspic30_board.h"
+extern const uint16_t dspic30_config_FOSC;
+extern const uint16_t dspic30_config_FWDT;
+extern const uint16_t dspic30_config_FBORPOR;
+}
+
+namespace
+{
+
+// Fact sheet §1.6, §2: clock and register addresses.
+constexpr double FCY = 7372800.0 * 8 / 4;
+constexpr uint16_t SR = 0x0042, INTCON1 = 0x0080, INTCON2 = 0x0082;
+constexpr uint16_t IFS0 = 0x0084, IFS1 = 0x0086, IEC0 = 0x008C, IEC1 = 0x008E;
+constexpr uint16_t IPC0 = 0x0094, IPC1 = 0x0096, IPC2 = 0x0098, IPC5 = 0x009E;
+constexpr uint16_t TMR1 = 0x0100, PR1 = 0x0102, T1CON = 0x0104, PR2 = 0x010C, T2CON = 0x0110;
+constexpr uint16_t PR4 = 0x011A, PR5 = 0x011C, T4CON = 0x011E, T5CON = 0x0120;
+constexpr uint16_t U1MODE = 0x020C, U1STA = 0x020E, U1BRG = 0x0214;
+constexpr uint16_t I2CBRG = 0x0204, I2CCON = 0x0206;
+constexpr uint16_t ADCBUF0 = 0x0280, ADCON1 = 0x02A0, ADCON2 = 0x02A2, ADCON3 = 0x02A4,
+                   ADCHS = 0x02A6, ADPCFG = 0x02A8, ADCSSL = 0x02AA;
+constexpr uint16_t TRISA = 0x02C0, LATA = 0x02C4, TRISC = 0x02CC, TRISD = 0x02D2, LATD = 0x02D6,
+                   TRISF = 0x02DE, TRISG = 0x02E4, PORTG = 0x02E6;
+constexpr uint16_t TBLPAG = 0x0032, NVMCON = 0x0760, NVMADR = 0x0762, NVMADRU = 0x0764,
+                   NVMKEY = 0x0766;
+
+uint16_t field(uint16_t value, int high, int low)
+{
+    return uint16_t((value >> low) & ((1u << (high - low + 1)) - 1));
+}
+
+struct Dspic30 : ::testing::Test {
+    simulated::Chip chip;
+    hal_board board{};
+    void SetUp() override
+    {
+        dspic30_board_init(&board);
+    }
+
+    // The writes to `address` since the board started, in order.
+    std::vector<uint16_t> writes_to(uint16_t address) const
+    {
+        std::vector<uint16_t> values;
+        for (auto write : chip.writes)
+            if (write.address == address)
+                values.push_back(write.value);
+        return values;
+    }
+};
+
+TEST_F(Dspic30, ConfigurationWordsSelectTheCrystalWithPllTimesEight)
+{
+    // §1.5: FCKSM = 1x, FOS = 111, FPR = 00110 (XT w/PLL 8x); [HDR] gives 0xBFE6.
+    EXPECT_EQ(dspic30_config_FOSC, 0xBFE6);
+    EXPECT_EQ(field(dspic30_config_FOSC, 4, 0), 0b00110);
+    EXPECT_EQ(field(dspic30_config_FOSC, 10, 8), 0b111);
+    EXPECT_EQ(field(dspic30_config_FOSC, 15, 15), 1);
+    EXPECT_EQ(dspic30_config_FWDT, 0x7FFF);
+    EXPECT_EQ(dspic30_config_FBORPOR, 0xFF7F);
+    EXPECT_EQ(double(DSPIC30_FCY_HZ), FCY);
+}
+
+TEST_F(Dspic30, InterruptControllerAllowsNestingOnThePrimaryVectors)
+{
+    EXPECT_EQ(chip.sfr(INTCON1) & 0x8000, 0); // NSTDIS
+    EXPECT_EQ(chip.sfr(INTCON2) & 0x8000, 0); // ALTIVT
+    EXPECT_EQ(chip.sfr(INTCON2) & 0x0001, 1); // INT0 on falling edges (§3.9)
+}
+
+TEST_F(Dspic30, MillisecondClockCountsTimer1Ticks)
+{
+    // Timer1 at 1:1 with a period of exactly 1/1024 s.
+    EXPECT_EQ(chip.sfr(PR1) + 1, FCY / 1024);
+    EXPECT_EQ(chip.sfr(T1CON), 0x8000); // TON, TCKPS = 00, internal clock
+    EXPECT_EQ(chip.sfr(TMR1), 0);
+    EXPECT_NE(chip.sfr(IEC0) & 0x0008, 0);
+    EXPECT_EQ(field(chip.sfr(IPC0), 14, 12), DSPIC30_PRIORITY_CLOCK);
+    for (int i = 0; i < 512; i++) {
+        chip.sfr(IFS0) |= 0x0008;
+        dspic30_on_clock_tick(&board);
+        EXPECT_EQ(chip.sfr(IFS0) & 0x0008, 0);
+    }
+    EXPECT_EQ(hal_milliseconds(&board), 500u);
+    for (int i = 0; i < 1024 * 3 + 1; i++)
+        dspic30_on_clock_tick(&board);
+    EXPECT_EQ(hal_milliseconds(&board), uint32_t(std::floor((512 + 3073) * 1000.0 / 1024)));
+}
+
+TEST_F(Dspic30, Uart1RunsAt115200EightNOneWithReceiveInterrupt)
+{
+    // §2.1: BRG = FCY / (16 × baud) − 1 = 7, exact.
+    EXPECT_EQ(chip.sfr(U1BRG), 7);
+    EXPECT_EQ(FCY / (16 * (chip.sfr(U1BRG) + 1)), 115200.0);
+    uint16_t mode = chip.sfr(U1MODE);
+    EXPECT_EQ(mode & 0x8000, 0x8000);   // UARTEN
+    EXPECT_EQ(mode & 0x0400, 0);        // ALTIO: main pins
+    EXPECT_EQ(field(mode, 2, 1), 0b00); // PDSEL 8N1
+    EXPECT_EQ(mode & 1, 0);             // one stop bit
+    uint16_t status = chip.sfr(U1STA);
+    EXPECT_EQ(status & 0x0400, 0x0400); // UTXEN
+    EXPECT_EQ(field(status, 7, 6), 0);  // URXISEL: every byte
+    // The UART is enabled before the transmitter, as the data sheet asks.
+    auto modes = writes_to(U1MODE);
+    ASSERT_FALSE(modes.empty());
+    EXPECT_EQ(modes.back(), 0x8000);
+    EXPECT_NE(chip.sfr(IEC0) & 0x0200, 0);     // U1RXIE
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0);     // U1TXIE off: sending polls
+    EXPECT_EQ(field(chip.sfr(IPC2), 6, 4), 5); // U1RX priority 5 as the library
+}
+
+TEST_F(Dspic30, ReceivedBytesGoThroughTheRingToTheLink)
+{
+    // A full 522-byte frame arriving 4 bytes (one FIFO) per interrupt.
+    std::vector<uint8_t> frame(522);
+    for (size_t i = 0; i < frame.size(); i++)
+        frame[i] = uint8_t(i * 7 + 3);
+    for (size_t i = 0; i < frame.size(); i += 4) {
+        for (size_t j = i; j < i + 4 && j < frame.size(); j++)
+            chip.uart_receive.push_back(frame[j]);
+        chip.sfr(IFS0) |= 0x0200;
+        dspic30_on_uart1_receive(&board);
+        EXPECT_EQ(chip.sfr(IFS0) & 0x0200, 0);
+    }
+    std::vector<uint8_t> received(600);
+    uint16_t count = hal_link_receive(&board, received.data(), uint16_t(received.size()));
+    received.resize(count);
+    EXPECT_EQ(received, frame);
+    EXPECT_EQ(hal_link_receive(&board, received.data(), 1), 0);
+}
+
+TEST_F(Dspic30, RingDropsBytesWhenFullInsteadOfOverwriting)
+{
+    for (int i = 0; i < 1100; i++) {
+        chip.uart_receive.push_back(uint8_t(i));
+        dspic30_on_uart1_receive(&board);
+    }
+    std::vector<uint8_t> received(2000);
+    uint16_t count = hal_link_receive(&board, received.data(), uint16_t(received.size()));
+    ASSERT_GE(count, 522);
+    for (uint16_t i = 0; i < count; i++)
+        ASSERT_EQ(received[i], uint8_t(i));
+    EXPECT_EQ(board.receive_overruns, 1100 - count);
+}
+
+TEST_F(Dspic30, OverrunIsCleared)
+{
+    chip.sfr(U1STA) |= 0x0002; // OERR
+    dspic30_on_uart1_receive(&board);
+    EXPECT_EQ(chip.sfr(U1STA) & 0x0002, 0);
+}
+
+TEST_F(Dspic30, LinkSendWritesTransmitRegister)
+{
+    const uint8_t bytes[] = { 0x01, 0x00, 0xFE, 0xFF, 0x42 };
+    hal_link_send(&board, bytes, sizeof bytes);
+    EXPECT_EQ(chip.uart_sent, std::vector<uint8_t>(bytes, bytes + sizeof bytes));
+}
+
+TEST_F(Dspic30, AgendaTimerAt100MicrosecondsMatchesTheLibrary)
+{
+    int calls = 0;
+    auto count = [](void *context) { ++*static_cast<int *>(context); };
+    ASSERT_TRUE(hal_timer_start(&board, HAL_TIMER_AGENDA, 100, count, &calls));
+    // §3.13: the library's 0.1 ms agenda uses PR2 = 1474 at 1:1.
+    EXPECT_EQ(chip.sfr(PR2), 1474);
+    EXPECT_EQ(chip.sfr(T2CON), 0x8000);
+    EXPECT_NE(chip.sfr(IEC0) & 0x0040, 0);
+    EXPECT_EQ(field(chip.sfr(IPC1), 10, 8), DSPIC30_PRIORITY_TIMERS);
+    chip.sfr(IFS0) |= 0x0040;
+    dspic30_on_timer(&board, HAL_TIMER_AGENDA);
+    EXPECT_EQ(calls, 1);
+    EXPECT_EQ(chip.sfr(IFS0) & 0x0040, 0);
+    hal_timer_stop(&board, HAL_TIMER_AGENDA);
+    EXPECT_EQ(chip.sfr(T2CON) & 0x8000, 0);
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0040, 0);
+}
+
+// Periods against (PR + 1) × prescale / FCY (§2.2), with the smallest
+// prescaler that fits 16 bits.
+TEST_F(Dspic30, MotorTimerPeriodsUseTheSmallestFittingPrescaler)
+{
+    const uint16_t prescale[] = { 1, 8, 64, 256 };
+    for (uint32_t microseconds : { 20u, 1000u, 4000u, 25000u, 100000u, 1000000u }) {
+        for (hal_timer timer : { HAL_TIMER_MOTOR_LEFT, HAL_TIMER_MOTOR_RIGHT }) {
+            ASSERT_TRUE(hal_timer_start(&board, timer, microseconds, nullptr, nullptr));
+            // Left motor on Timer5, right on Timer4 (§3.6).
+            uint16_t control = chip.sfr(timer == HAL_TIMER_MOTOR_LEFT ? T5CON : T4CON);
+            uint16_t period = chip.sfr(timer == HAL_TIMER_MOTOR_LEFT ? PR5 : PR4);
+            int code = field(control, 5, 4);
+            EXPECT_EQ(control & 0x8000, 0x8000);
+            EXPECT_EQ(control & 0x000A, 0); // 16-bit, internal clock
+            double counts = microseconds * 1e-6 * FCY / prescale[code];
+            EXPECT_NEAR(period + 1, counts, 0.5) << microseconds;
+            if (code > 0) {
+                EXPECT_GT(microseconds * 1e-6 * FCY / prescale[code - 1], 65536.0);
+            }
+        }
+    }
+    EXPECT_NE(chip.sfr(IEC1) & 0x0060, 0); // T4IE, T5IE
+    EXPECT_EQ(field(chip.sfr(IPC5), 6, 4), DSPIC30_PRIORITY_TIMERS);
+    EXPECT_EQ(field(chip.sfr(IPC5), 10, 8), DSPIC30_PRIORITY_TIMERS);
+    EXPECT_FALSE(hal_timer_start(&board, HAL_TIMER_SPARE, 2000000, nullptr, nullptr));
+    EXPECT_FALSE(hal_timer_start(&board, HAL_TIMER_SPARE, 1, nullptr, nullptr));
+    (void)IFS1;
+}
+
+TEST_F(Dspic30, AdcStartsInManualModeWithValidConversionClock)
+{
+    EXPECT_EQ(chip.sfr(ADPCFG), 0x0003); // AN0/AN1 digital (ICD lines), the rest analog
+    EXPECT_EQ(chip.sfr(ADCON1), 0x8000); // ADON, unsigned integers, SSRC = 000
+    EXPECT_EQ(chip.sfr(ADCON2), 0);      // AVdd/AVss, no scan
+    uint16_t adcs = field(chip.sfr(ADCON3), 5, 0);
+    double tad = (adcs + 1) / 2.0 / FCY;
+    EXPECT_GE(tad, 667e-9); // §2.3 minimum at 3.3 V
+    EXPECT_EQ(field(chip.sfr(IPC2), 14, 12), DSPIC30_PRIORITY_ADC);
+}
+
+TEST_F(Dspic30, SingleConversionReadsTheChannel)
+{
+    chip.analog[HAL_ADC_ACCELEROMETER_Y] = 2345;
+    chip.analog[HAL_ADC_PROXIMITY_0 + 3] = 17;
+    EXPECT_EQ(hal_adc_read(&board, 6), 2345);
+    EXPECT_EQ(chip.sfr(ADCHS), 6);
+    EXPECT_EQ(hal_adc_read(&board, 11), 17);
+    EXPECT_EQ(hal_adc_read(&board, 16), 0);
+}
+
+TEST_F(Dspic30, ScansInterruptAt16384HzLikeTheLibrary)
+{
+    struct Scan {
+        uint16_t mask;
+        uint16_t library_adcs; // §2.3, advanced scan driver
+    };
+    for (Scan scan : { Scan{ 0x001C, 39 }, Scan{ 0x111C, 23 }, Scan{ 0x00FC, 19 } }) {
+        ASSERT_TRUE(hal_adc_scan_start(&board, scan.mask, nullptr, nullptr));
+        EXPECT_EQ(chip.sfr(ADCSSL), scan.mask);
+        int channels = __builtin_popcount(scan.mask);
+        EXPECT_EQ(chip.sfr(ADCON1), 0x80E4);                         // ADON, SSRC = 111, ASAM
+        EXPECT_EQ(chip.sfr(ADCON2), 0x0400 | ((channels - 1) << 2)); // CSCNA, SMPI
+        EXPECT_EQ(field(chip.sfr(ADCON3), 12, 8), 1);                // SAMC
+        uint16_t adcs = field(chip.sfr(ADCON3), 5, 0);
+        EXPECT_EQ(adcs, scan.library_adcs);
+        double scan_seconds = channels * (1 + 14) * ((adcs + 1) / 2.0) / FCY;
+        EXPECT_DOUBLE_EQ(1 / scan_seconds, 16384.0);
+        EXPECT_NE(chip.sfr(IEC0) & 0x0800, 0);
+    }
+    EXPECT_FALSE(hal_adc_scan_select(&board, 0x0004)); // one channel
+    EXPECT_FALSE(hal_adc_scan_select(&board, 0xFF00)); // eight
+    hal_adc_scan_stop(&board);
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0800, 0);
+    EXPECT_EQ(chip.sfr(ADCON1), 0x8000);
+}
+
+TEST_F(Dspic30, ScanInterruptHandsTheBufferToTheCallback)
+{
+    std::vector<uint16_t> got;
+    auto keep = [](void *context, const uint16_t *values, uint8_t count) {
+        static_cast<std::vector<uint16_t> *>(context)->assign(values, values + count);
+    };
+    ASSERT_TRUE(hal_adc_scan_start(&board, 0x221C, keep, &got));
+    for (uint16_t i = 0; i < 5; i++)
+        chip.sfr(uint16_t(ADCBUF0 + 2 * i)) = uint16_t(1000 + i);
+    chip.sfr(IFS0) |= 0x0800;
+    dspic30_on_adc(&board);
+    EXPECT_EQ(got, (std::vector<uint16_t>{ 1000, 1001, 1002, 1003, 1004 }));
+    EXPECT_EQ(chip.sfr(IFS0) & 0x0800, 0);
+    EXPECT_EQ(hal_adc_read(&board, 5), 0); // no single reads while scanning
+    ASSERT_TRUE(hal_adc_scan_select(&board, 0x00FC));
+    EXPECT_EQ(chip.sfr(ADCSSL), 0x00FC);
+}
+
+TEST_F(Dspic30, I2cWritesAndReadsCameraRegisters)
+{
+    EXPECT_EQ(chip.sfr(I2CBRG), 150); // the library's value (§2.4)
+    EXPECT_EQ(chip.sfr(I2CCON) & 0x8000, 0x8000);
+    chip.i2c_devices[0xDC] = std::vector<uint8_t>(256, 0);
+    chip.i2c_devices[0xDC][0x00] = 0x30;
+    chip.i2c_devices[0xDC][0x01] = 0x30;
+    uint8_t id[2] = {};
+    ASSERT_TRUE(hal_i2c_read(&board, HAL_I2C_CAMERA_ADDRESS, 0x00, id, 2));
+    EXPECT_EQ(id[0], 0x30); // PO3030K (§3.5)
+    EXPECT_EQ(id[1], 0x30);
+    const uint8_t gains[] = { 0x10, 0x40, 0x40 };
+    ASSERT_TRUE(hal_i2c_write(&board, 0xDC, 0x15, gains, 3));
+    EXPECT_EQ(chip.i2c_devices[0xDC][0x15], 0x10);
+    EXPECT_EQ(chip.i2c_devices[0xDC][0x17], 0x40);
+    // The last byte read gets a NACK (ACKDT = 1).
+    EXPECT_NE(chip.sfr(I2CCON) & 0x0020, 0);
+    EXPECT_FALSE(hal_i2c_read(&board, 0x3C, 0x0F, id, 1)); // nobody at 0x3C
+    EXPECT_FALSE(hal_i2c_write(&board, 0x3C, 0x0F, gains, 1));
+}
+
+TEST_F(Dspic30, PortsFollowThePinMap)
+{
+    // §3.1: LEDs on RA6,7,9,10,12..15 are outputs, started low.
+    EXPECT_EQ(chip.sfr(TRISA) & 0xF6C0, 0);
+    EXPECT_EQ(chip.sfr(LATA) & 0xF6C0, 0);
+    EXPECT_EQ(chip.sfr(TRISD), 0xFF00);          // motors out, camera data in
+    EXPECT_EQ(chip.sfr(TRISG) & 0x03C0, 0x03C0); // selector in
+    EXPECT_EQ(chip.sfr(TRISG) & 0x0003, 0);      // IR pulses 2/6, 3/7 out
+    EXPECT_EQ(chip.sfr(TRISF) & 0x0180, 0);      // IR pulses 0/4, 1/5 out
+    EXPECT_EQ(chip.sfr(TRISF) & 0x0042, 0x0042); // remote, battery low in
+    EXPECT_EQ(chip.sfr(TRISC) & 0x2006, 0);      // front, body LED, camera reset out
+    hal_pin_write(&board, HAL_PIN_LED_3, true);
+    EXPECT_EQ(chip.sfr(LATA), 1u << 12); // LED3 is RA12
+    hal_pin_write(&board, HAL_PIN_MOTOR_RIGHT_C, true);
+    EXPECT_EQ(chip.sfr(LATD), 1u << 6);
+    EXPECT_TRUE(hal_pin_read(&board, HAL_PIN_MOTOR_RIGHT_C));
+    hal_pin_write(&board, HAL_PIN_SELECTOR_0, true); // an input: ignored
+    chip.sfr(PORTG) = 0x0280;                        // RG7, RG9
+    int selector = 0;
+    for (int bit = 0; bit < 4; bit++)
+        selector |= hal_pin_read(&board, hal_pin(HAL_PIN_SELECTOR_0 + bit)) << bit;
+    EXPECT_EQ(selector, 0b1010);
+}
+
+TEST_F(Dspic30, RemoteEdgesComeFromInt0)
+{
+    int edges = 0;
+    auto count = [](void *context) { ++*static_cast<int *>(context); };
+    EXPECT_FALSE(hal_pin_watch_falling_edge(&board, HAL_PIN_SELECTOR_0, count, &edges));
+    ASSERT_TRUE(hal_pin_watch_falling_edge(&board, HAL_PIN_REMOTE, count, &edges));
+    EXPECT_NE(chip.sfr(IEC0) & 0x0001, 0);
+    EXPECT_EQ(field(chip.sfr(IPC0), 2, 0), DSPIC30_PRIORITY_REMOTE);
+    dspic30_on_remote_edge(&board);
+    EXPECT_EQ(edges, 1);
+    hal_pin_unwatch(&board, HAL_PIN_REMOTE);
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0001, 0);
+}
+
+TEST_F(Dspic30, CriticalSectionRaisesCpuPriorityToSeven)
+{
+    chip.sfr(SR) = 0x0001; // IPL 0, carry set
+    hal_critical_state outer = hal_critical_enter(&board);
+    EXPECT_EQ(field(chip.sfr(SR), 7, 5), 7);
+    hal_critical_state inner = hal_critical_enter(&board);
+    hal_critical_leave(&board, inner);
+    EXPECT_EQ(field(chip.sfr(SR), 7, 5), 7);
+    hal_critical_leave(&board, outer);
+    EXPECT_EQ(chip.sfr(SR), 0x0001);
+}
+
+TEST_F(Dspic30, FlashRowEraseWriteReadEndToEnd)
+{
+    const uint32_t row = 0x012340 & ~0x3Fu; // a row in the third panel (page 1)
+    ASSERT_TRUE(hal_flash_erase_row(&board, row));
+    ASSERT_EQ(chip.operations.size(), 1u);
+    // §1.3: NVMCON 0x4041, NVMADRU:NVMADR written before the keys.
+    EXPECT_EQ(chip.operations[0].nvmcon, 0x4041);
+    EXPECT_EQ(chip.operations[0].address, row);
+    EXPECT_EQ(writes_to(NVMADRU).back(), row >> 16);
+    EXPECT_EQ(writes_to(NVMADR).back(), row & 0xFFFF);
+    EXPECT_EQ(chip.rejected_unlocks, 0);
+
+    std::vector<uint32_t> instructions(32);
+    for (uint32_t i = 0; i < 32; i++)
+        instructions[i] = (0xA5u << 16) | (i * 0x0101u) | 0x8000u;
+    ASSERT_TRUE(hal_flash_write_row(&board, row, instructions.data()));
+    ASSERT_EQ(chip.operations.size(), 2u);
+    EXPECT_EQ(chip.operations[1].nvmcon, 0x4001);
+    EXPECT_EQ(chip.operations[1].address, row);
+    EXPECT_EQ(writes_to(TBLPAG).back(), row >> 16);
+    for (uint32_t i = 0; i < 32; i++)
+        EXPECT_EQ(hal_flash_read(&board, row + 2 * i), instructions[i]) << i;
+    EXPECT_EQ(hal_flash_read(&board, row + 0x40), 0xFFFFFFu); // next row untouched
+    EXPECT_FALSE(hal_flash_erase_row(&board, row + 2));       // not a row start
+    EXPECT_FALSE(hal_flash_erase_row(&board, 0x018000));      // past the end
+}
+
+TEST_F(Dspic30, UnlockIsKeyFiveFiveKeyAAThenWriteWithInterruptsMasked)
+{
+    ASSERT_TRUE(hal_eeprom_erase_word(&board, 3));
+    // The writes around the key sequence: mask (SR), 0x55, 0xAA, WR set
+    // on the erase code, nothing between them.
+    size_t n = chip.writes.size();
+    size_t first_key = n;
+    for (size_t i = 0; i < n; i++)
+        if (chip.writes[i].address == NVMKEY) {
+            first_key = i;
+            break;
+        }
+    ASSERT_GE(first_key, 1u);
+    ASSERT_LT(first_key + 2, n);
+    EXPECT_EQ(chip.writes[first_key - 1].address, SR);
+    EXPECT_EQ(field(chip.writes[first_key - 1].value, 7, 5), 7);
+    EXPECT_EQ(chip.writes[first_key].value, 0x55);
+    EXPECT_EQ(chip.writes[first_key + 1].address, NVMKEY);
+    EXPECT_EQ(chip.writes[first_key + 1].value, 0xAA);
+    EXPECT_EQ(chip.writes[first_key + 2].address, NVMCON);
+    EXPECT_EQ(chip.writes[first_key + 2].value, 0x4044 | 0x8000);
+    // The operation code was in NVMCON before the keys.
+    bool code_before = false;
+    for (size_t i = 0; i < first_key; i++)
+        if (chip.writes[i].address == NVMCON && chip.writes[i].value == 0x4044)
+            code_before = true;
+    EXPECT_TRUE(code_before);
+    EXPECT_EQ(field(chip.operations.back().status_register, 7, 5), 7);
+    EXPECT_EQ(chip.rejected_unlocks, 0);
+}
+
+TEST_F(Dspic30, EepromWordEraseWriteReadEndToEnd)
+{
+    const uint16_t index = 1000;
+    ASSERT_TRUE(hal_eeprom_erase_word(&board, index));
+    // §1.4: NVMCON 0x4044, NVMADRU = 0x7F, NVMADR = 0xF000 + 2 × index.
+    EXPECT_EQ(chip.operations.back().nvmcon, 0x4044);
+    EXPECT_EQ(chip.operations.back().address, 0x7FF000u + 2 * index);
+    ASSERT_TRUE(hal_eeprom_write_word(&board, index, 0x1234));
+    EXPECT_EQ(chip.operations.back().nvmcon, 0x4004);
+    EXPECT_EQ(chip.operations.back().address, 0x7FF000u + 2 * index);
+    EXPECT_EQ(writes_to(TBLPAG).back(), 0x7F);
+    EXPECT_EQ(chip.eeprom[index], 0x1234);
+    EXPECT_EQ(hal_eeprom_read(&board, index), 0x1234);
+    EXPECT_EQ(hal_eeprom_read(&board, index + 1), 0xFFFF);
+    // Without an erase, bits only go down.
+    ASSERT_TRUE(hal_eeprom_write_word(&board, index, 0xFF0F));
+    EXPECT_EQ(hal_eeprom_read(&board, index), 0x1204);
+    EXPECT_FALSE(hal_eeprom_write_word(&board, 2048, 0));
+}
+
+TEST_F(Dspic30, IdleAndResetUseTheirInstructions)
+{
+    hal_idle(&board);
+    hal_reset(&board);
+    ASSERT_GE(chip.specials.size(), 2u);
+    EXPECT_EQ(chip.specials[chip.specials.size() - 2], "pwrsav #1");
+    EXPECT_EQ(chip.specials.back(), "reset");
+}
+
+} // namespace
