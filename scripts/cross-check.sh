@@ -51,5 +51,26 @@ check() { # name compiler size-tool flags...
         }'
 }
 
+# What the layers cost in a real image: the VM, the natives and the node
+# linked into the smallest firmware-like program, unused functions dropped,
+# the compiler's support library (32-bit arithmetic) included.
+image() { # name compiler size-tool flags...
+    local name=$1 compiler=$2 size_tool=$3
+    shift 3
+    local elf=$build/cross-$name/node-image.elf
+    "$compiler" "${flags[@]}" "$@" -Wl,--gc-sections "${sources[@]}" tests/cross/node_image.c \
+        -o "$elf"
+    "$size_tool" -A "$elf" | awk -v name="$name" '
+        $1 ~ /^\.(text|init|fini)/ { code += $2 }
+        $1 ~ /^\.rodata/ { constant += $2 }
+        $1 ~ /^\.data$/ { data += $2 }
+        END { printf "  linked image (vm + natives + node): %d bytes of code, %d of constant data%s\n",
+                     code, constant + (name == "avr" ? data : 0),
+                     name == "avr" ? " (avr copies it to RAM)" : "" }'
+}
+
 check avr avr-gcc avr-size -mmcu=atmega1284p
+image avr avr-gcc avr-size -mmcu=atmega1284p
 check arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb
+image arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb --specs=nano.specs \
+    --specs=nosys.specs
