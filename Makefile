@@ -6,6 +6,7 @@
 #   make test          every test, under ASan + UBSan (build/host-sanitize)
 #   make cross-check   the portable layers with 16- and 32-bit cross compilers
 #   make fuzz          every fuzz target for FUZZ_SECONDS (default 60) each
+#   make bench         performance figures beside the reference (docs/benchmarks.md)
 #   make run           the main job
 #   make format        clang-format every source file
 
@@ -86,7 +87,7 @@ HOST_OUTPUTS = $(foreach l,$(LIBRARIES),$(BUILD)/host/lib/lib$(l).a) \
                $(foreach t,$(TESTS),$(BUILD)/host/tests/$(t))
 TEST_BINARIES = $(foreach t,$(TESTS),$(BUILD)/host-sanitize/tests/$(t))
 
-.PHONY: all test tests cross-check run format clean deps fuzz
+.PHONY: all test tests cross-check run format clean deps fuzz bench
 all: $(HOST_OUTPUTS)
 
 tests: $(TEST_BINARIES)
@@ -99,7 +100,7 @@ deps:
 
 # The portable layers must build warning-free where `int` is 16 bits (the
 # dsPIC's case, here avr-gcc) and on a 32-bit microcontroller.
-PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c)
+PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c)
 cross-check: | $(DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
 
@@ -107,6 +108,11 @@ cross-check: | $(DEPS_STAMP)
 FUZZ_SECONDS ?= 60
 fuzz: | $(DEPS_STAMP)
 	@scripts/fuzz.sh $(FUZZ_SECONDS) $(BUILD)
+
+# Performance figures beside the reference Aseba: one table, also written to
+# docs/benchmarks.md (see scripts/bench.sh).
+bench: | $(DEPS_STAMP)
+	@scripts/bench.sh $(BUILD)
 
 # The main job; RUN_ARGS go to epuck-emu (e.g. RUN_ARGS="--duration 60").
 run: all

@@ -3,10 +3,23 @@
 # bounded time. Any crash stops with a non-zero status; its input is kept in
 # BUILD_DIR/fuzz/<target>/ to become a regression test.
 # Usage: scripts/fuzz.sh SECONDS BUILD_DIR [TARGET...]   (default: every target)
+# The random seed is FUZZ_SEED (default 1), so that a CI run can be replayed.
 set -euo pipefail
 seconds=$1
 build=$2
 shift 2
+
+# The compiler library with what its target presets need (the standard
+# natives' C table), and the client library on top of it.
+natives_sources="vm/vm.c vm/vm_debug.c native_functions/nat_arguments.c native_functions/nat_math.c
+                 native_functions/nat_trigonometry.c native_functions/nat_deque.c
+                 native_functions/nat_standard.c"
+# (target_json.cpp is left out: nothing here uses it, and clang rejects it.)
+compiler_sources=$natives_sources
+for source in tools/compiler/*.cpp; do
+    [ "$source" = tools/compiler/target_json.cpp ] || compiler_sources+=" $source"
+done
+client_sources="$compiler_sources $(echo tools/client/*.cpp)"
 
 # TARGET: its sources (C files are the portable layers under test, compiled
 # for coverage; C++ files the harness), extra link flags and input size limit.
@@ -18,12 +31,16 @@ declare -A sources=(
             native_functions/nat_trigonometry.c native_functions/nat_deque.c
             native_functions/nat_standard.c tests/fuzz/node_fuzzer.cpp
             tests/node/node_harness.cpp tests/node/reference_decoder.cpp"
+    [compiler]="$compiler_sources tests/fuzz/compiler_fuzzer.cpp"
+    [client]="$client_sources tests/fuzz/client_fuzzer.cpp"
 )
-declare -A link_flags=([vm]="" [node]="-lasebacommon")
-declare -A max_length=([vm]=1024 [node]=4096)
+declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="")
+declare -A max_length=([vm]=1024 [node]=4096 [compiler]=4096 [client]=4096)
+# Folders of real inputs a target starts from, besides its own corpus.
+declare -A seeds=([compiler]="examples tests/compiler/programs")
 
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vm node)
+[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba)
@@ -47,8 +64,10 @@ for target in "${targets[@]}"; do
     clang++ "${sanitize[@]}" -fsanitize=fuzzer "${objects[@]}" ${link_flags[$target]} \
         -o "$out/fuzzer"
     echo "fuzz: $target for $seconds s"
-    "$out/fuzzer" -max_total_time="$seconds" -max_len="${max_length[$target]}" \
-        -artifact_prefix="$out/" -print_final_stats=1 "$out/corpus" 2>"$out/log" ||
+    # shellcheck disable=SC2086 # seed folders are words
+    "$out/fuzzer" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len="${max_length[$target]}" \
+        -artifact_prefix="$out/" -print_final_stats=1 "$out/corpus" ${seeds[$target]:-} \
+        2>"$out/log" ||
         { tail -n 40 "$out/log"; echo "fuzz: $target found a crash, kept in $out/" >&2; exit 1; }
     grep -E "stat::number_of_executed_units|Done [0-9]+ runs" "$out/log" | tail -n 1
 done

@@ -154,9 +154,9 @@ size_t Network::client_count() const
     return clients_.size();
 }
 
-void Network::service(int timeout_ms)
+void Network::deliver_to_boards()
 {
-    // Boards first: feed each link what it can hold, whole frames only.
+    // Feed each link what it can hold, whole frames only.
     for (auto &board : boards_) {
         while (!board->to_board.empty()) {
             const Frame &frame = board->to_board.front();
@@ -165,6 +165,17 @@ void Network::service(int timeout_ms)
             board->to_board.pop_front();
         }
     }
+}
+
+void Network::service(int timeout_ms)
+{
+    deliver_to_boards();
+    // What arrives while waiting reaches the boards before this returns, so
+    // that robots answer at their next poll rather than after another wait.
+    struct DeliverOnReturn {
+        Network *network;
+        ~DeliverOnReturn() { network->deliver_to_boards(); }
+    } deliver_on_return{ this };
 
     std::vector<pollfd> fds;
     for (int fd : listeners_)

@@ -79,6 +79,7 @@ class Network
   private:
     struct Member;
     void broadcast(const Member *from, const Frame &frame);
+    void deliver_to_boards();
     void close_client(size_t index, const char *reason);
     static void board_output(void *context, const uint8_t *bytes, uint16_t count);
 

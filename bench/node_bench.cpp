@@ -1,0 +1,266 @@
+// The node benchmark, over loopback TCP, against a node process it starts on
+// a free port and stops itself (by the pid it recorded):
+//
+//   bench-node emu        epuck-emu with one robot (our node and firmware)
+//   bench-node reference  Debian's asebadummynode (the reference node library)
+//       prints: median round trip of GET_VARIABLES -> VARIABLES in us, the
+//       mean in us, and user events per second through a handler that
+//       answers each `ping` with a `pong` (at most `window` in flight).
+//
+//   bench-node simulator ROBOTS SECONDS
+//       runs epuck-emu with ROBOTS robots running the paper's controller for
+//       SECONDS and prints the CPU seconds it used per robot-second.
+//
+// Nothing else sits between the client and the node (asebadummynode serves
+// one client); the client never sends GET_NODE_DESCRIPTION, which crashes
+// asebadummynode (see the reference tools' pitfalls).
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <poll.h>
+#include <stdexcept>
+#include <string>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <vector>
+
+#include "tests/interop/child_process.hpp"
+#include "tests/interop/interop_support.hpp"
+#include "tools/client/wire.hpp"
+#include "tools/compiler/compiler.hpp"
+#include "tools/compiler/target_presets.hpp"
+
+extern "C" {
+#include "vm/node_protocol.h"
+}
+
+namespace
+{
+
+using aseba::client::Frame;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char *emulator_path = "build/host/bin/epuck-emu";
+constexpr const char *reference_node_path = "asebadummynode";
+constexpr const char *paper_annex_project = "examples/paper-annex.aesl";
+constexpr const char *emulator_lifetime_seconds = "120"; // a safety net; we stop it sooner
+constexpr auto start_timeout = std::chrono::milliseconds(5000);
+constexpr auto answer_timeout_ms = 2000;
+constexpr uint16_t node_id = 1; // robot 1 of epuck-emu; dummynode-0 is node 1
+constexpr uint16_t ping_event = 0;
+constexpr uint16_t pong_event = 1;
+constexpr int latency_rounds = 2000;
+constexpr int warmup_rounds = 50;
+constexpr uint16_t variables_read_words = 16;
+constexpr int event_count = 20000;
+constexpr int event_window = 16;
+constexpr size_t bytecode_chunk_words = 256;
+constexpr const char *ping_pong_program = "onevent ping\nemit pong\n";
+
+// A blocking TCP client of one node, with Nagle and delayed ACK off.
+class Connection
+{
+  public:
+    explicit Connection(uint16_t port)
+    {
+        socket_ = ::socket(AF_INET, SOCK_STREAM, 0);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_port = htons(port);
+        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        if (socket_ < 0 ||
+            ::connect(socket_, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0)
+            throw std::runtime_error("cannot connect to port " + std::to_string(port));
+        int on = 1;
+        setsockopt(socket_, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
+    }
+    ~Connection()
+    {
+        ::close(socket_);
+    }
+    Connection(const Connection &) = delete;
+    Connection &operator=(const Connection &) = delete;
+
+    void send(uint16_t type, const std::vector<uint16_t> &words)
+    {
+        Frame frame;
+        frame.source = aseba::client::HOST_SOURCE;
+        frame.type = type;
+        for (uint16_t word : words) {
+            frame.payload.push_back(static_cast<uint8_t>(word & 0xFF));
+            frame.payload.push_back(static_cast<uint8_t>(word >> 8));
+        }
+        std::vector<uint8_t> bytes = aseba::client::serialize_frame(frame);
+        if (::send(socket_, bytes.data(), bytes.size(), MSG_NOSIGNAL) !=
+            static_cast<ssize_t>(bytes.size()))
+            throw std::runtime_error("send failed");
+    }
+
+    // The next frame of `type`, skipping others; throws after the timeout.
+    Frame receive(uint16_t type)
+    {
+        for (;;) {
+            while (auto frame = frames_.next())
+                if (frame->type == type)
+                    return *frame;
+            pollfd readable{ socket_, POLLIN, 0 };
+            if (::poll(&readable, 1, answer_timeout_ms) <= 0)
+                throw std::runtime_error("no answer of type " + std::to_string(type));
+            uint8_t buffer[4096];
+            ssize_t count = ::recv(socket_, buffer, sizeof buffer, 0);
+            if (count <= 0)
+                throw std::runtime_error("the node closed the connection");
+            frames_.feed(buffer, static_cast<size_t>(count));
+            // Acknowledge at once: a waiting client must not see delayed ACKs.
+            int on = 1;
+            setsockopt(socket_, IPPROTO_TCP, TCP_QUICKACK, &on, sizeof on);
+        }
+    }
+
+  private:
+    int socket_ = -1;
+    aseba::client::FrameAssembler frames_;
+};
+
+// The node process, started on a free port, stopped when this ends.
+struct NodeProcess {
+    interop::ScratchFolder scratch;
+    uint16_t port = 0;
+    std::unique_ptr<interop::ChildProcess> process;
+
+    explicit NodeProcess(bool reference, unsigned robots = 1, const char *load = nullptr)
+    {
+        port = interop::find_free_port();
+        std::vector<std::string> argv;
+        if (reference)
+            argv = { reference_node_path, "-p", std::to_string(port), "0" };
+        else {
+            argv = { emulator_path,          "--port",     std::to_string(port),      "--robots",
+                     std::to_string(robots), "--duration", emulator_lifetime_seconds, "--quiet" };
+            if (load)
+                argv.insert(argv.end(), { "--load", load });
+        }
+        if (reference) {
+            // A probe connection would make asebadummynode deaf once it
+            // closes: wait for the line it prints when it listens instead.
+            process = std::make_unique<interop::ChildProcess>(
+              argv, scratch.file("node.log"), interop::OutputMode::ToPipe);
+            auto line = process->read_line(start_timeout);
+            if (!line || line->find("tcp:port=" + std::to_string(port)) == std::string::npos)
+                throw std::runtime_error(process->command_line() + " does not listen");
+            return;
+        }
+        process = std::make_unique<interop::ChildProcess>(argv, scratch.file("node.log"));
+        if (!interop::wait_until_listening(port, start_timeout))
+            throw std::runtime_error(process->command_line() + " does not listen");
+    }
+};
+
+double median(std::vector<double> values)
+{
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+}
+
+void load_ping_pong(Connection &connection, const aseba::TargetDescription &target)
+{
+    aseba::CommonDefinitions definitions;
+    definitions.events = { { "ping", 0 }, { "pong", 0 } };
+    aseba::CompileResult program = aseba::compile(ping_pong_program, target, definitions);
+    if (!program.ok)
+        throw std::runtime_error("ping-pong program: " + program.error.message);
+    for (size_t start = 0; start < program.bytecode.size(); start += bytecode_chunk_words) {
+        size_t end = std::min(program.bytecode.size(), start + bytecode_chunk_words);
+        std::vector<uint16_t> words{ node_id, static_cast<uint16_t>(start) };
+        words.insert(words.end(),
+                     program.bytecode.begin() + static_cast<long>(start),
+                     program.bytecode.begin() + static_cast<long>(end));
+        connection.send(NODE_MSG_SET_BYTECODE, words);
+    }
+    connection.send(NODE_MSG_RESET, { node_id });
+    connection.send(NODE_MSG_RUN, { node_id });
+}
+
+int bench_node(bool reference)
+{
+    NodeProcess node(reference);
+    Connection connection(node.port);
+
+    std::vector<double> round_trips_us;
+    for (int round = 0; round < warmup_rounds + latency_rounds; round++) {
+        auto begin = Clock::now();
+        connection.send(NODE_MSG_GET_VARIABLES, { node_id, 0, variables_read_words });
+        connection.receive(NODE_MSG_VARIABLES);
+        auto end = Clock::now();
+        if (round >= warmup_rounds)
+            round_trips_us.push_back(
+              std::chrono::duration<double, std::micro>(end - begin).count());
+    }
+    double mean_us = 0;
+    for (double value : round_trips_us)
+        mean_us += value / static_cast<double>(round_trips_us.size());
+
+    load_ping_pong(connection, reference ? aseba::dummy_target() : aseba::epuck_target());
+    int sent = 0;
+    auto begin = Clock::now();
+    for (; sent < event_window; sent++)
+        connection.send(ping_event, {});
+    for (int answered = 0; answered < event_count; answered++) {
+        connection.receive(pong_event);
+        if (sent < event_count) {
+            connection.send(ping_event, {});
+            sent++;
+        }
+    }
+    double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
+
+    std::printf("%.1f\t%.1f\t%.0f\n", median(round_trips_us), mean_us, event_count / seconds);
+    node.process->stop();
+    return 0;
+}
+
+double children_cpu_seconds()
+{
+    rusage usage{};
+    getrusage(RUSAGE_CHILDREN, &usage);
+    auto seconds = [](const timeval &time) { return time.tv_sec + time.tv_usec / 1e6; };
+    return seconds(usage.ru_utime) + seconds(usage.ru_stime);
+}
+
+int bench_simulator(unsigned robots, double seconds)
+{
+    double cpu_before = children_cpu_seconds();
+    auto begin = Clock::now();
+    {
+        NodeProcess node(false, robots, paper_annex_project);
+        while (std::chrono::duration<double>(Clock::now() - begin).count() < seconds)
+            usleep(10000);
+        node.process->stop(); // reaped: its CPU time now counts
+    }
+    double wall = std::chrono::duration<double>(Clock::now() - begin).count();
+    double cpu = children_cpu_seconds() - cpu_before;
+    std::printf("%.6f\t%.3f\t%.3f\n", cpu / (robots * wall), cpu, wall);
+    return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+try {
+    std::string mode = argc > 1 ? argv[1] : "";
+    if (mode == "emu" || mode == "reference")
+        return bench_node(mode == "reference");
+    if (mode == "simulator" && argc == 4)
+        return bench_simulator(static_cast<unsigned>(std::atoi(argv[2])), std::atof(argv[3]));
+    std::fprintf(stderr,
+                 "usage: bench-node emu|reference  |  bench-node simulator ROBOTS SECONDS\n");
+    return 2;
+} catch (const std::exception &error) {
+    std::fprintf(stderr, "bench-node: %s\n", error.what());
+    return 1;
+}

@@ -1,0 +1,161 @@
+#!/usr/bin/env bash
+# `make bench`: builds the benchmark programs of bench/ in the plain host
+# build, measures our VM, code size, compiler, node and simulator beside the
+# reference Aseba (Debian's `aseba`) in the same run, and prints one table,
+# also written to docs/benchmarks.md (replaced on every run).
+# Usage: scripts/bench.sh BUILD_DIR       (run from the repository root)
+set -euo pipefail
+build=$1
+bin=$build/host/bin
+report=docs/benchmarks.md
+
+# Repetitions, kept small enough for the whole run to take a few minutes.
+vm_timing_runs=30
+compiler_runs=20
+simulator_seconds=5
+simulator_robots_many=1000 # epuck-emu's maximum
+paper_budget_bytes=10240   # the 2007 paper's budget for VM + natives + protocol
+avr_goal_bytes=8192
+vm_goal_instructions=18
+
+echo "bench: building" >&2
+make --no-print-directory BUILD="$build" "$bin/bench-vm" "$bin/bench-vm-goto" \
+    "$bin/bench-compiler" "$bin/bench-node" "$bin/epuck-emu" >&2
+
+ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b + 0 == 0) print "-"; else printf "%.2f", a / b }'; }
+divide() { awk -v a="$1" -v b="$2" -v f="$3" 'BEGIN { printf f, a / b }'; }
+
+# --- VM dispatch -----------------------------------------------------------
+echo "bench: VM (callgrind)" >&2
+steps=$("$bin/bench-vm" steps ours) # also checks that both VMs agree
+scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+
+# Host instructions executed inside the run function, setup excluded.
+instructions() { # program vm function
+    valgrind --tool=callgrind --toggle-collect="$3" --callgrind-out-file="$scratch/out" \
+        "$bin/$1" once "$2" 2>"$scratch/log" >/dev/null
+    awk '/Collected :/ { print $NF }' "$scratch/log"
+}
+ir_switch=$(instructions bench-vm ours vm_run)
+ir_goto=$(instructions bench-vm-goto ours vm_run)
+ir_reference=$(instructions bench-vm reference AsebaVMRun)
+per_step_switch=$(divide "$ir_switch" "$steps" %.1f)
+per_step_goto=$(divide "$ir_goto" "$steps" %.1f)
+per_step_reference=$(divide "$ir_reference" "$steps" %.1f)
+
+echo "bench: VM (wall clock)" >&2
+ns_switch=$(divide "$("$bin/bench-vm" time ours $vm_timing_runs)" "$steps" %.2f)
+ns_goto=$(divide "$("$bin/bench-vm-goto" time ours $vm_timing_runs)" "$steps" %.2f)
+ns_reference=$(divide "$("$bin/bench-vm" time reference $vm_timing_runs)" "$steps" %.2f)
+
+# --- code size -------------------------------------------------------------
+echo "bench: code size" >&2
+# The standard natives only (native_functions/ also holds optional ones).
+standard_natives=(native_functions/nat_arguments.c native_functions/nat_math.c
+                  native_functions/nat_trigonometry.c native_functions/nat_deque.c
+                  native_functions/nat_standard.c)
+sizes=$(scripts/cross-check.sh "$build/bench" vm/*.c "${standard_natives[@]}")
+# From the N-th "linked image" line (1: avr, 2: arm): its code, and its code
+# plus constant data (what the flash must hold).
+linked_of() { # n field(1: code, 2: code + constant)
+    echo "$sizes" | awk -v n="$1" -v field="$2" '/linked image/ {
+        seen++
+        if (seen != n) next
+        gsub(/[^0-9]+/, " ")
+        split($0, numbers, " ")
+        print field == 1 ? numbers[1] : numbers[1] + numbers[2]
+    }'
+}
+avr_flash=$(linked_of 1 2)
+arm_flash=$(linked_of 2 2)
+avr_code=$(linked_of 1 1)
+arm_code=$(linked_of 2 1)
+if [ -z "$avr_flash" ] || [ -z "$arm_flash" ]; then
+    echo "bench: cross-check.sh printed no linked image sizes" >&2
+    exit 1
+fi
+
+# --- compiler --------------------------------------------------------------
+echo "bench: compiler" >&2
+compiler=$("$bin/bench-compiler" $compiler_runs)
+compiler_field() { echo "$compiler" | awk -F'\t' -v name="$1" -v f="$2" '$1 == name { print $f }'; }
+
+# --- node and simulator ----------------------------------------------------
+echo "bench: node" >&2
+read -r ours_latency_median ours_latency_mean ours_events < <("$bin/bench-node" emu)
+read -r ref_latency_median ref_latency_mean ref_events < <("$bin/bench-node" reference)
+echo "bench: simulator" >&2
+read -r sim_one _ _ < <("$bin/bench-node" simulator 1 $simulator_seconds)
+read -r sim_many sim_many_cpu sim_many_wall < <("$bin/bench-node" simulator \
+    $simulator_robots_many $simulator_seconds)
+robots_per_core=$(awk -v c="$sim_many" 'BEGIN { printf "%.0f", 1 / c }')
+
+# --- the table -------------------------------------------------------------
+table=$(
+    echo "| figure | ours | reference | ours / reference | goal |"
+    echo "|---|---|---|---|---|"
+    echo "| VM: host instructions per bytecode step, switch dispatch (callgrind) | $per_step_switch | $per_step_reference | $(ratio "$per_step_switch" "$per_step_reference") | ≤ $vm_goal_instructions |"
+    echo "| VM: host instructions per bytecode step, computed goto (callgrind) | $per_step_goto | $per_step_reference | $(ratio "$per_step_goto" "$per_step_reference") | ≤ $vm_goal_instructions |"
+    echo "| VM: ns per bytecode step, switch dispatch (best of $vm_timing_runs) | $ns_switch | $ns_reference | $(ratio "$ns_switch" "$ns_reference") | |"
+    echo "| VM: ns per bytecode step, computed goto (best of $vm_timing_runs) | $ns_goto | $ns_reference | $(ratio "$ns_goto" "$ns_reference") | |"
+    echo "| VM + standard natives + node protocol linked, avr-gcc -Os (16-bit int): code + const data, bytes | $avr_flash (code $avr_code) | paper budget $paper_budget_bytes | $(ratio "$avr_flash" "$paper_budget_bytes") of budget | < $avr_goal_bytes |"
+    echo "| VM + standard natives + node protocol linked, Cortex-M4 -Os: code + const data, bytes | $arm_flash (code $arm_code) | paper budget $paper_budget_bytes | $(ratio "$arm_flash" "$paper_budget_bytes") of budget | |"
+    echo "| compiler: paper annex (paper's dialect, e-puck), ms, mean of $((compiler_runs * 10)) | $(compiler_field paper-annex 2) | cannot compile it | - | |"
+    echo "| compiler: paper annex in today's dialect (e-puck), ms, mean of $((compiler_runs * 10)) | $(compiler_field paper-annex-today 2) | $(compiler_field paper-annex-today 3) | $(ratio "$(compiler_field paper-annex-today 2)" "$(compiler_field paper-annex-today 3)") | |"
+    echo "| compiler: generated 1,000-line script ($(compiler_field generated-1000 4) words), ms, mean of $compiler_runs | $(compiler_field generated-1000 2) | $(compiler_field generated-1000 3) | $(ratio "$(compiler_field generated-1000 2)" "$(compiler_field generated-1000 3)") | |"
+    echo "| node: GET_VARIABLES → VARIABLES round trip, loopback TCP, median µs (mean) | $ours_latency_median ($ours_latency_mean) | $ref_latency_median ($ref_latency_mean) | $(ratio "$ours_latency_median" "$ref_latency_median") | |"
+    echo "| node: user events per second (ping → pong, 16 in flight) | $ours_events | $ref_events | $(ratio "$ours_events" "$ref_events") | |"
+    echo "| simulator: CPU s per robot-second, 1 robot running the paper annex | $sim_one | - | - | |"
+    echo "| simulator: CPU s per robot-second, $simulator_robots_many robots ($sim_many_cpu s CPU in $sim_many_wall s) | $sim_many | - | - | |"
+    echo "| simulator: robots one core would keep in real time (extrapolated from the line above; epuck-emu runs at most 1000) | ≈ $robots_per_core | - | - | |"
+)
+
+cpu_model=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)
+cores=$(nproc)
+{
+    echo "# Benchmarks"
+    echo
+    echo "Measured by \`make bench\` (scripts/bench.sh, programs in bench/) on"
+    echo "$cpu_model, $cores cores, $(date -u '+%Y-%m-%d %H:%M UTC'). This file is"
+    echo "replaced on every run. The reference is Debian's \`aseba\` 1.6.99, measured in"
+    echo "the same run."
+    echo
+    echo "$table"
+    echo
+    echo "## How each figure is measured"
+    echo
+    echo "- VM: \`bench/vm_workload.aseba\` (nested loops with arithmetic and array"
+    echo "  reads and writes) is compiled once by our compiler for the dummy node; the"
+    echo "  same bytecode runs on our VM (\`bench-vm\`: switch dispatch;"
+    echo "  \`bench-vm-goto\`: computed goto) and on Debian's libasebavm.a. Steps:"
+    echo "  $steps, counted one vm_step at a time on our VM and one AsebaVMRun(1) at a"
+    echo "  time on the reference (\`bench-vm steps ours\` checks both counts and the"
+    echo "  final variables agree). Instructions: \`valgrind --tool=callgrind"
+    echo "  --toggle-collect=vm_run\` (\`AsebaVMRun\` for the reference) around"
+    echo "  \`bench-vm once ours\`, divided by the steps. Time: \`bench-vm time ours"
+    echo "  $vm_timing_runs\`, the best run, divided by the steps."
+    echo "- Code size: \`scripts/cross-check.sh\` on vm/*.c and the standard natives"
+    echo "  (nat_arguments, nat_math, nat_trigonometry, nat_deque, nat_standard); the"
+    echo "  table quotes its linked image (tests/cross/node_image.c, unused functions"
+    echo "  dropped, the compiler's support library included). Its whole output:"
+    echo
+    echo '```'
+    echo "$sizes"
+    echo '```'
+    echo
+    echo "- Compiler: \`bench-compiler $compiler_runs\`, wall-clock mean. The reference"
+    echo "  runs through tests/compiler/reference_oracle.cpp and must give the same"
+    echo "  bytecode. The 1,000-line script is generated by bench/compiler_bench.cpp"
+    echo "  (\`bench-compiler 1 --print-generated\` prints it)."
+    echo "- Node: \`bench-node emu\` starts \`epuck-emu --robots 1\`, \`bench-node"
+    echo "  reference\` starts \`asebadummynode\`, each on a free loopback port, and"
+    echo "  talks to it directly (TCP_NODELAY, TCP_QUICKACK): 2,000 GET_VARIABLES of 16"
+    echo "  words, then 20,000 user events through a handler \`onevent ping emit pong\`"
+    echo "  loaded with SET_BYTECODE, RESET, RUN."
+    echo "- Simulator: \`bench-node simulator N $simulator_seconds\` runs \`epuck-emu"
+    echo "  --robots N --load examples/paper-annex.aesl\` for $simulator_seconds s of wall"
+    echo "  time and divides the CPU time it used by N × seconds."
+} >"$report"
+echo "$table"
+echo "bench: written to $report" >&2
