@@ -31,23 +31,33 @@ struct JsonError : std::runtime_error {
     }
 };
 
+struct JsonMember;
+
 struct JsonValue {
     enum class Kind { Null, Boolean, Number, String, Array, Object } kind = Kind::Null;
     bool boolean = false;
     long long number = 0;
     std::string string;
     std::vector<JsonValue> array;
-    std::vector<std::pair<std::string, JsonValue>> object; // in file order
+    // A vector may hold a type still incomplete here; a std::pair may not.
+    std::vector<JsonMember> object; // in file order
     unsigned line = 0;
 
-    const JsonValue *member(const std::string &key) const
-    {
-        for (const auto &[name, value] : object)
-            if (name == key)
-                return &value;
-        return nullptr;
-    }
+    const JsonValue *member(const std::string &key) const;
 };
+
+struct JsonMember {
+    std::string name;
+    JsonValue value;
+};
+
+const JsonValue *JsonValue::member(const std::string &key) const
+{
+    for (const auto &[name, value] : object)
+        if (name == key)
+            return &value;
+    return nullptr;
+}
 
 class JsonParser
 {
@@ -123,7 +133,7 @@ class JsonParser
                     throw JsonError(line, "expected a member name in quotes");
                 std::string key = parse_string();
                 expect(':');
-                value.object.emplace_back(key, parse_value(depth + 1));
+                value.object.push_back({ key, parse_value(depth + 1) });
                 if (peek() == ',') {
                     ++position;
                     continue;
