@@ -1,0 +1,88 @@
+// dsp.fir and dsp.iir: filters over an int16 signal.
+//
+// Both sum their products exactly in 64 bits, then round half up once and
+// saturate to int16: the result is the exact filter output, rounded, for
+// any number of taps, and clips instead of wrapping at the extremes.
+
+#include <stddef.h>
+
+#include "nat_dsp_internal.h"
+#include "nat_internal.h"
+
+// FIR coefficients are Q15 (32767 is 0.99997); IIR coefficients are Q14
+// (16384 is 1.0) so that a biquad's a1, up to 2 in magnitude, fits.
+#define FIR_COEFFICIENT_SHIFT 15
+#define IIR_COEFFICIENT_SHIFT 14
+
+// dsp.iir's fixed sizes and the order of its arrays.
+#define IIR_COEFFICIENT_COUNT 5 // b0 b1 b2 a1 a2
+#define IIR_STATE_COUNT       4 // x[n-1] x[n-2] y[n-1] y[n-2]
+enum { IIR_B0, IIR_B1, IIR_B2, IIR_A1, IIR_A2 };
+enum { IIR_X1, IIR_X2, IIR_Y1, IIR_Y2 };
+
+void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = nat_size_after(arguments, 3);
+    uint16_t tap_count = nat_length(arguments[4]);
+    int16_t *signals[2];
+    if (!nat_spans(vm, arguments, 2, length, signals))
+        return;
+    const int16_t *coefficients = vm_variables(vm, (uint16_t)arguments[2], tap_count);
+    if (coefficients == NULL)
+        return;
+    int16_t *dest = signals[0];
+    const int16_t *src = signals[1];
+
+    // Samples before src[0] are zero (no history). Computed from the last
+    // output down so that dest may be src itself: dest[n] only reads src[0..n],
+    // none of which is overwritten yet.
+    for (uint16_t n = length; n-- > 0;) {
+        uint16_t taps = n < tap_count ? (uint16_t)(n + 1) : tap_count;
+        int64_t sum = 0;
+        for (uint16_t k = 0; k < taps; ++k)
+            sum += (int32_t)coefficients[k] * src[n - k];
+        dest[n] = nat_dsp_saturate(nat_dsp_round_shift(sum, FIR_COEFFICIENT_SHIFT));
+    }
+}
+
+void nat_dsp_iir_function(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = nat_size_after(arguments, 4);
+    int16_t *signals[2];
+    if (!nat_spans(vm, arguments, 2, length, signals))
+        return;
+    const int16_t *coefficient_span =
+      vm_variables(vm, (uint16_t)arguments[2], IIR_COEFFICIENT_COUNT);
+    if (coefficient_span == NULL)
+        return;
+    int16_t *state_span = vm_variables(vm, (uint16_t)arguments[3], IIR_STATE_COUNT);
+    if (state_span == NULL)
+        return;
+    int16_t *dest = signals[0];
+    const int16_t *src = signals[1];
+
+    // Local copies: dest may overlap them, and the state is written once.
+    int32_t b0 = coefficient_span[IIR_B0], b1 = coefficient_span[IIR_B1];
+    int32_t b2 = coefficient_span[IIR_B2], a1 = coefficient_span[IIR_A1];
+    int32_t a2 = coefficient_span[IIR_A2];
+    int16_t x1 = state_span[IIR_X1], x2 = state_span[IIR_X2];
+    int16_t y1 = state_span[IIR_Y1], y2 = state_span[IIR_Y2];
+
+    // Direct form I: y = b0 x + b1 x[n-1] + b2 x[n-2] - a1 y[n-1] - a2 y[n-2].
+    // Its state is made of saturated inputs and outputs, so it cannot wrap.
+    for (uint16_t n = 0; n < length; ++n) {
+        int16_t x = src[n];
+        int64_t sum = (int64_t)(b0 * x) + (int64_t)(b1 * x1) + (int64_t)(b2 * x2) -
+                      (int64_t)(a1 * y1) - (int64_t)(a2 * y2);
+        int16_t y = nat_dsp_saturate(nat_dsp_round_shift(sum, IIR_COEFFICIENT_SHIFT));
+        dest[n] = y;
+        x2 = x1;
+        x1 = x;
+        y2 = y1;
+        y1 = y;
+    }
+    state_span[IIR_X1] = x1;
+    state_span[IIR_X2] = x2;
+    state_span[IIR_Y1] = y1;
+    state_span[IIR_Y2] = y2;
+}

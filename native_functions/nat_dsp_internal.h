@@ -1,0 +1,67 @@
+// What the files of the DSP natives share: the C functions behind the
+// descriptions of nat_dsp.c and the fixed-point helpers they all round and
+// saturate with. Not for use outside native_functions/.
+
+#ifndef NAT_DSP_INTERNAL_H
+#define NAT_DSP_INTERNAL_H
+
+#include <stdint.h>
+
+#include "vm.h"
+
+// Largest right shift dsp.corr and dsp.conv accept.
+#define NAT_DSP_MAX_SHIFT 31
+
+// `value` clamped to the int16 range.
+static inline int16_t nat_dsp_saturate(int64_t value)
+{
+    if (value > INT16_MAX)
+        return INT16_MAX;
+    if (value < INT16_MIN)
+        return INT16_MIN;
+    return (int16_t)value;
+}
+
+// value / 2^shift rounded half up (towards +infinity on ties), for
+// 0 <= shift <= 62. Relies on >> of a negative number being arithmetic, as
+// on every compiler the project builds with (gcc, XC16).
+static inline int64_t nat_dsp_round_shift(int64_t value, uint16_t shift)
+{
+    if (shift == 0)
+        return value;
+    return (value + ((int64_t)1 << (shift - 1))) >> shift;
+}
+
+// The same for 32-bit values (0 <= shift <= 30), cheaper on 16-bit chips;
+// the caller guarantees that value + 2^(shift-1) does not overflow.
+static inline int32_t nat_dsp_round_shift32(int32_t value, uint16_t shift)
+{
+    if (shift == 0)
+        return value;
+    return (value + ((int32_t)1 << (shift - 1))) >> shift;
+}
+
+// `value` clamped to the int16 range, for 32-bit values.
+static inline int16_t nat_dsp_saturate32(int32_t value)
+{
+    if (value > INT16_MAX)
+        return INT16_MAX;
+    if (value < INT16_MIN)
+        return INT16_MIN;
+    return (int16_t)value;
+}
+
+// nat_dsp_fft.c
+void nat_dsp_fft_function(vm_state *vm, const int16_t *arguments);
+void nat_dsp_mag_function(vm_state *vm, const int16_t *arguments);
+
+// nat_dsp_filter.c
+void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments);
+void nat_dsp_iir_function(vm_state *vm, const int16_t *arguments);
+
+// nat_dsp_correlation.c
+void nat_dsp_corr_function(vm_state *vm, const int16_t *arguments);
+void nat_dsp_conv_function(vm_state *vm, const int16_t *arguments);
+void nat_dsp_peak_function(vm_state *vm, const int16_t *arguments);
+
+#endif

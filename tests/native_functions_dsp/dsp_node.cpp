@@ -1,0 +1,122 @@
+#include "dsp_node.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace
+{
+
+DspNode &node_of(void *context)
+{
+    return *static_cast<DspNode *>(context);
+}
+
+void ignore_emit(void *, uint16_t, const int16_t *, uint16_t) {}
+void ignore_state(void *, uint16_t, uint16_t) {}
+void ignore_killed(void *, uint16_t) {}
+
+void record_array_access(void *context, uint16_t pc, uint16_t, uint16_t)
+{
+    node_of(context).errors.push_back({ DspError::Kind::array_access, pc, {} });
+}
+
+void record_division_by_zero(void *context, uint16_t pc)
+{
+    node_of(context).errors.push_back({ DspError::Kind::division_by_zero, pc, {} });
+}
+
+void record_node_specific(void *context, uint16_t pc, const char *message)
+{
+    node_of(context).errors.push_back({ DspError::Kind::node_specific, pc, message });
+}
+
+const vm_callbacks recording_callbacks = {
+    ignore_emit,         ignore_state, ignore_killed, record_array_access, record_division_by_zero,
+    record_node_specific
+};
+
+// The e-puck's order: standard natives first, then the DSP natives.
+const vm_native *const epuck_like_natives[] = { NAT_STANDARD_LIST, NAT_DSP_LIST };
+const vm_native_table epuck_like_table = { epuck_like_natives, NAT_STANDARD_COUNT + NAT_DSP_COUNT };
+
+constexpr uint16_t init_event = 0xFFFF;
+constexpr uint16_t stack_words = 32;
+
+} // namespace
+
+DspNode::DspNode(uint16_t variables_size, uint16_t bytecode_words, uint16_t args_size)
+  : variables(variables_size)
+  , bytecode_(bytecode_words)
+  , stack_(stack_words)
+{
+    vm_memory memory{};
+    memory.bytecode = bytecode_.data();
+    memory.bytecode_size = bytecode_words;
+    memory.variables = variables.data();
+    memory.variables_size = variables_size;
+    memory.stack = stack_.data();
+    memory.stack_size = stack_words;
+    memory.args_size = args_size;
+    vm_init(&vm, &memory, 1, &epuck_like_table, &recording_callbacks, this);
+}
+
+void DspNode::call(const vm_native &native, const std::vector<int16_t> &popped_words)
+{
+    if (popped_words.size() != native.stack_words)
+        throw std::invalid_argument(std::string("wrong argument count for ") + native.name);
+    vm.pc = call_pc;
+    vm.flags = VM_FLAG_EVENT_ACTIVE | VM_FLAG_EVENT_RUNNING;
+    native.function(&vm, popped_words.data());
+}
+
+void DspNode::put(uint16_t address, const Words &values)
+{
+    for (size_t i = 0; i < values.size(); ++i)
+        variables.at(address + i) = values[i];
+}
+
+Words DspNode::get(uint16_t address, uint16_t count) const
+{
+    if (address + count > variables.size())
+        throw std::out_of_range("DspNode::get");
+    return Words(variables.begin() + address, variables.begin() + address + count);
+}
+
+void DspNode::run_init(const std::vector<uint16_t> &code)
+{
+    // Event table: one entry, init, whose handler starts at word 3.
+    std::vector<uint16_t> image = { 3, init_event, 3 };
+    image.insert(image.end(), code.begin(), code.end());
+    load_and_run_init(image);
+}
+
+void DspNode::load_and_run_init(const std::vector<uint16_t> &image)
+{
+    if (image.size() > bytecode_.size())
+        throw std::invalid_argument("bytecode too long");
+    std::copy(image.begin(), image.end(), bytecode_.begin());
+    vm.flags = 0;
+    if (vm_setup_event(&vm, init_event) == 0)
+        throw std::invalid_argument("bytecode does not handle init");
+    vm_run(&vm, 0);
+}
+
+Words random_words(std::mt19937 &generator, size_t count, int low, int high)
+{
+    std::uniform_int_distribution<int> distribution(low, high);
+    Words words(count);
+    for (auto &word : words)
+        word = static_cast<int16_t>(distribution(generator));
+    return words;
+}
+
+int16_t clamp_to_int16(double value)
+{
+    return static_cast<int16_t>(std::clamp(value, double(INT16_MIN), double(INT16_MAX)));
+}
+
+double round_half_up(double sum, int shift)
+{
+    return std::floor(sum / std::ldexp(1.0, shift) + 0.5);
+}
