@@ -17,6 +17,7 @@ layer_of() {
     case $1 in
     vm/node*) echo "node protocol" ;;
     vm/*) echo "vm" ;;
+    native_functions/nat_dsp*) echo "dsp natives" ;;
     native_functions/*) echo "natives" ;;
     *) echo "other" ;;
     esac
