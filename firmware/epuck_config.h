@@ -8,12 +8,8 @@
 // Bytes taken from the link per main-loop pass.
 #define EPUCK_LINK_CHUNK 32
 
-// Local events. Until the sensor drivers raise them, the firmware raises them
-// on the clock at the hardware's rates.
-// A full 8-sensor IR update every 16 ms (about 63 Hz, hardware §3.2, derived).
-#define EPUCK_IR_SENSORS_PERIOD_MS 16
-// ⚠ The camera line rate depends on the frame rate, which was never measured;
-// 10 Hz is a placeholder until the camera driver raises the event itself.
-#define EPUCK_CAMERA_PERIOD_MS 100
+// The node id is (selector & EPUCK_SELECTOR_NODE_MASK) + 1 (hardware §6.1,
+// §6.6) unless the caller gives one.
+#define EPUCK_SELECTOR_NODE_MASK 0x7u
 
 #endif

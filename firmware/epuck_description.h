@@ -5,7 +5,10 @@
 //
 // Variable names follow the upstream e-puck firmware that the 2007 paper used
 // (hardware/epuck1.md §6.1), so that the paper's controller runs unchanged.
-// The first three variables are fixed by the VM (bytecode.md §7).
+// The first three variables are fixed by the VM (bytecode.md §7). The later
+// additions of the GCtronic firmware (§6.1: step counters, microphones,
+// selector, RC5, timer period, battery) come after the paper's thirteen, so
+// that the paper's names keep their addresses.
 
 #ifndef EPUCK_DESCRIPTION_H
 #define EPUCK_DESCRIPTION_H
@@ -29,12 +32,20 @@
     X(cam_line, "camLine", 1)                                                                      \
     X(cam_red, "camR", 60)                                                                         \
     X(cam_green, "camG", 60)                                                                       \
-    X(cam_blue, "camB", 60)
+    X(cam_blue, "camB", 60)                                                                        \
+    X(steps_left, "steps.left", 1)                                                                 \
+    X(steps_right, "steps.right", 1)                                                               \
+    X(mic, "mic", 3)                                                                               \
+    X(selector, "sel", 1)                                                                          \
+    X(rc5, "rc5", 1)                                                                               \
+    X(timer_period, "timer.period", 1)                                                             \
+    X(battery, "battery", 1)
 
 // EPUCK_LOCAL_EVENT(identifier, "name", "description"), in id order: the i-th
 // has event id 0xFFFE - i.
 #define EPUCK_LOCAL_EVENT_LIST(X)                                                                  \
     X(ir_sensors, "ir_sensors", "new proximity and ambient values")                                \
-    X(camera, "camera", "new camera line")
+    X(camera, "camera", "new camera line")                                                         \
+    X(timer, "timer", "timer.period milliseconds elapsed")
 
 #endif

@@ -1,9 +1,13 @@
-// The e-puck's main loop: bytes from the link into the node, the node's
-// poll (VM and protocol), and the local events. Written against hal.h only,
+// The e-puck's main loop: bytes from the link into the node, the actuator
+// variables to the drivers and the sensors' values to the variables (in the
+// upstream firmware's order, hardware §6.1), the local events, and the
+// node's poll (VM and protocol). Written against hal.h only,
 // so the same code runs on the robot and in the host emulation.
 
 #include "epuck_firmware.h"
 
+#include "drivers/epuck/epuck_battery.h"
+#include "drivers/epuck/epuck_selector.h"
 #include "native_functions/nat_standard.h"
 
 static const node_named_variable epuck_variables[] = {
@@ -48,13 +52,35 @@ static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bo
     hal_link_send(firmware->board, bytes, count);
 }
 
+// Starts every driver: actuators off, the analog scan (whose first second
+// and a half calibrates the proximity sensors and accelerometer), the
+// camera and the remote (hardware §6.6).
+static void start_drivers(epuck_firmware *firmware, hal_board *board)
+{
+    epuck_motor_init(&firmware->left_motor, board, EPUCK_MOTOR_LEFT);
+    epuck_motor_init(&firmware->right_motor, board, EPUCK_MOTOR_RIGHT);
+    epuck_leds_init(&firmware->leds, board);
+    epuck_proximity_init(&firmware->proximity, board);
+    epuck_accelerometer_init(&firmware->accelerometer, board);
+    epuck_microphones_init(&firmware->microphones, board);
+    epuck_analog_start(&firmware->analog,
+                       board,
+                       &firmware->proximity,
+                       &firmware->accelerometer,
+                       &firmware->microphones);
+    epuck_camera_init(&firmware->camera, board);
+    epuck_rc5_init(&firmware->rc5, board);
+}
+
 void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t node_id)
 {
     vm_memory memory;
     node_transport transport;
-    uint32_t now = hal_milliseconds(board);
 
     firmware->board = board;
+    if (node_id == 0)
+        node_id = (uint16_t)((epuck_selector_read(board) & EPUCK_SELECTOR_NODE_MASK) + 1u);
+    start_drivers(firmware, board);
     memory.bytecode = firmware->bytecode;
     memory.bytecode_size = EPUCK_BYTECODE_WORDS;
     memory.variables = firmware->variables.words;
@@ -65,22 +91,66 @@ void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t no
     transport.send = send_to_link;
     transport.context = firmware;
     node_init(&firmware->node, node_id, &epuck_description, &memory, &transport, 0);
+    firmware->variables.named.cam_line[0] = EPUCK_CAMERA_DEFAULT_LINE;
     firmware->link_start = 0;
     firmware->link_count = 0;
-    firmware->next_ir_sensors_ms = now + EPUCK_IR_SENSORS_PERIOD_MS;
-    firmware->next_camera_ms = now + EPUCK_CAMERA_PERIOD_MS;
+    firmware->timer_period_ms = 0;
+    firmware->next_timer_ms = 0;
 }
 
-// Whether the periodic deadline `*next` has passed; if so, schedules the next.
-static bool period_elapsed(uint32_t now, uint32_t *next, uint32_t period)
+// Speeds and LEDs from the variables to the motors and LEDs; the speeds are
+// written back clamped to the motors' range.
+static void update_actuators(epuck_firmware *firmware)
 {
-    // Compared as a signed difference so that the clock may wrap.
-    if ((int32_t)(now - *next) < 0)
-        return false;
-    *next += period;
-    if ((int32_t)(now - *next) >= 0) // fell behind: do not try to catch up
-        *next = now + period;
-    return true;
+    epuck_named_variables *named = &firmware->variables.named;
+    uint16_t led;
+
+    epuck_motor_set_speed(&firmware->left_motor, named->left_speed[0]);
+    epuck_motor_set_speed(&firmware->right_motor, named->right_speed[0]);
+    named->left_speed[0] = epuck_motor_speed(&firmware->left_motor);
+    named->right_speed[0] = epuck_motor_speed(&firmware->right_motor);
+    for (led = 0; led < EPUCK_RING_LED_COUNT; led++)
+        epuck_leds_set(&firmware->leds, led, named->leds[led] != 0);
+}
+
+// Sensor values into the variables, raising the events of new ones.
+static void update_sensors(epuck_firmware *firmware)
+{
+    epuck_named_variables *named = &firmware->variables.named;
+    uint8_t toggle;
+    uint8_t address;
+    uint8_t command;
+
+    if (epuck_proximity_take(&firmware->proximity, named->prox, named->ambient))
+        node_raise_local_event(&firmware->node, EPUCK_EVENT_ir_sensors);
+    epuck_accelerometer_read(&firmware->accelerometer, named->acc);
+    epuck_microphones_read(&firmware->microphones, named->mic);
+    if (epuck_camera_capture(
+          &firmware->camera, named->cam_line[0], named->cam_red, named->cam_green, named->cam_blue))
+        node_raise_local_event(&firmware->node, EPUCK_EVENT_camera);
+    named->steps_left[0] = epuck_motor_steps(&firmware->left_motor);
+    named->steps_right[0] = epuck_motor_steps(&firmware->right_motor);
+    named->battery[0] = epuck_battery_ok(firmware->board) ? 1 : 0;
+    named->selector[0] = (int16_t)epuck_selector_read(firmware->board);
+    if (epuck_rc5_take(&firmware->rc5, &toggle, &address, &command))
+        named->rc5[0] = command;
+}
+
+// The `timer` event every timer.period milliseconds (0 or less: never).
+static void update_timer(epuck_firmware *firmware, uint32_t now)
+{
+    int16_t period = firmware->variables.named.timer_period[0];
+
+    if (period != firmware->timer_period_ms) {
+        firmware->timer_period_ms = period;
+        firmware->next_timer_ms = now + (uint32_t)(int32_t)period;
+    }
+    if (period <= 0 || (int32_t)(now - firmware->next_timer_ms) < 0)
+        return;
+    node_raise_local_event(&firmware->node, EPUCK_EVENT_timer);
+    firmware->next_timer_ms += (uint32_t)(int32_t)period;
+    if ((int32_t)(now - firmware->next_timer_ms) >= 0) // fell behind: do not catch up
+        firmware->next_timer_ms = now + (uint32_t)(int32_t)period;
 }
 
 bool epuck_firmware_poll(epuck_firmware *firmware)
@@ -100,16 +170,16 @@ bool epuck_firmware_poll(epuck_firmware *firmware)
         firmware->link_count -= taken;
     }
 
-    if (period_elapsed(now, &firmware->next_ir_sensors_ms, EPUCK_IR_SENSORS_PERIOD_MS))
-        node_raise_local_event(&firmware->node, EPUCK_EVENT_ir_sensors);
-    if (period_elapsed(now, &firmware->next_camera_ms, EPUCK_CAMERA_PERIOD_MS))
-        node_raise_local_event(&firmware->node, EPUCK_EVENT_camera);
+    update_actuators(firmware);
+    update_sensors(firmware);
+    update_timer(firmware, now);
 
     busy = node_poll(&firmware->node, now);
     return busy || firmware->link_count != 0;
 }
 
-void epuck_firmware_start_program(epuck_firmware *firmware, const uint16_t *bytecode,
+void epuck_firmware_start_program(epuck_firmware *firmware,
+                                  const uint16_t *bytecode,
                                   uint16_t count)
 {
     vm_set_bytecode(&firmware->node.vm, 0, bytecode, count);

@@ -9,6 +9,14 @@
 #include <stdint.h>
 
 #include "epuck_config.h"
+#include "drivers/epuck/epuck_accelerometer.h"
+#include "drivers/epuck/epuck_analog.h"
+#include "drivers/epuck/epuck_camera.h"
+#include "drivers/epuck/epuck_leds.h"
+#include "drivers/epuck/epuck_microphones.h"
+#include "drivers/epuck/epuck_motors.h"
+#include "drivers/epuck/epuck_proximity.h"
+#include "drivers/epuck/epuck_rc5.h"
 #include "epuck_description.h"
 #include "hal/hal.h"
 #include "vm/node.h"
@@ -42,20 +50,37 @@ typedef struct epuck_firmware {
     uint8_t link_bytes[EPUCK_LINK_CHUNK];
     uint16_t link_start;
     uint16_t link_count;
-    uint32_t next_ir_sensors_ms;
-    uint32_t next_camera_ms;
+    // The board's devices.
+    epuck_motor left_motor;
+    epuck_motor right_motor;
+    epuck_leds leds;
+    epuck_proximity proximity;
+    epuck_accelerometer accelerometer;
+    epuck_microphones microphones;
+    epuck_analog analog;
+    epuck_camera camera;
+    epuck_rc5 rc5;
+    // The `timer` event: the period it runs with (0 = off) and its next due time.
+    int16_t timer_period_ms;
+    uint32_t next_timer_ms;
 } epuck_firmware;
 
-// Starts the firmware on `board` as node `node_id` (1..0xFFFE).
+// Starts the drivers on `board` and the node as `node_id` (1..0xFFFE), or,
+// when `node_id` is 0, as (selector & 7) + 1. The proximity sensors and the
+// accelerometer calibrate during the first second and a half: the robot
+// should stand still (their values are uncalibrated until then).
 void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t node_id);
 
-// One pass of the main loop; never blocks. Returns whether more work is
-// waiting (when false the caller may idle until the next input or tick).
+// One pass of the main loop: link, drivers to variables and back, local
+// events, VM; never blocks, but for reading a camera line on the robot.
+// Returns whether more work is waiting (when false the caller may idle
+// until the next input or tick).
 bool epuck_firmware_poll(epuck_firmware *firmware);
 
 // Starts `count` words of bytecode as a stored program starts at boot: init
 // runs at once, not paused (bytecode.md §6.5).
-void epuck_firmware_start_program(epuck_firmware *firmware, const uint16_t *bytecode,
+void epuck_firmware_start_program(epuck_firmware *firmware,
+                                  const uint16_t *bytecode,
                                   uint16_t count);
 
 // The e-puck's description, as sent to hosts.

@@ -25,11 +25,29 @@ using namespace std::chrono_literals;
 
 // The e-puck's named variables (hardware/epuck1.md §6.1, upstream firmware).
 const std::vector<NamedVariable> epuck_variables = {
-    { 1, "id" },    { 1, "source" }, { 32, "args" },   { 1, "leftSpeed" }, { 1, "rightSpeed" },
-    { 8, "leds" },  { 8, "prox" },   { 8, "ambiant" }, { 3, "acc" },       { 1, "camLine" },
-    { 60, "camR" }, { 60, "camG" },  { 60, "camB" },
+    { 1, "id" },
+    { 1, "source" },
+    { 32, "args" },
+    { 1, "leftSpeed" },
+    { 1, "rightSpeed" },
+    { 8, "leds" },
+    { 8, "prox" },
+    { 8, "ambiant" },
+    { 3, "acc" },
+    { 1, "camLine" },
+    { 60, "camR" },
+    { 60, "camG" },
+    { 60, "camB" },
+    // The later additions (§6.1, GCtronic column), after the paper's names.
+    { 1, "steps.left" },
+    { 1, "steps.right" },
+    { 3, "mic" },
+    { 1, "sel" },
+    { 1, "rc5" },
+    { 1, "timer.period" },
+    { 1, "battery" },
 };
-const std::vector<std::string> epuck_local_events = { "ir_sensors", "camera" };
+const std::vector<std::string> epuck_local_events = { "ir_sensors", "camera", "timer" };
 // The standard natives, in order (language.md §13.1).
 const std::vector<std::string> standard_natives = {
     "math.copy",   "math.fill",        "math.addscalar",  "math.add",        "math.sub",
@@ -42,11 +60,12 @@ const std::vector<std::string> standard_natives = {
 constexpr const char *epuck_name = "e-puck";
 constexpr uint16_t first_robot = 1;
 
-// ir_sensors fires every 16 ms (≈ 63 Hz, hardware/epuck1.md §6.2).
-constexpr double ir_sensors_per_second = 1000.0 / 16.0;
-// epuck-emu raises camera every 100 ms (a placeholder rate, firmware/epuck_config.h);
-// the tests use it only for time limits.
-constexpr Milliseconds camera_period{ 100 };
+// ir_sensors fires after each full IR set: 4 pairs of 65 ADC scans at
+// 16384 Hz (≈ 63 Hz, hardware/epuck1.md §3.2, §6.2).
+constexpr double ir_sensors_per_second = 16384.0 / (4 * 65);
+// relay.aesl and group.aesl set timer.period to 100 ms; the tests use it for
+// time limits.
+constexpr Milliseconds timer_period{ 100 };
 
 // Execution flags (bytecode.md §6).
 constexpr uint16_t step_by_step_flag = 0x0002;
@@ -55,7 +74,7 @@ constexpr uint16_t step_by_step_flag = 0x0002;
 constexpr Milliseconds tool_timeout{ 10000 };    // massloader needs about 2 s
 constexpr Milliseconds answer_timeout{ 2000 };   // a node's answer to a request
 constexpr Milliseconds startup_timeout{ 10000 }; // a tool until it serves
-constexpr Milliseconds group_settle_time = 30 * camera_period;
+constexpr Milliseconds group_settle_time = 30 * timer_period;
 
 // --- helpers --------------------------------------------------------------
 
@@ -301,8 +320,8 @@ TEST(Interop, AsebadumpDecodesAWholeSession)
         "node present from 1 : protocol version 5",
         "description from 1 : Node e-puck using protocol version 5",
         "bytecode: " + std::to_string(description.header.bytecode_size),
-        "named variables: 13",
-        "local events: 2",
+        "named variables: " + std::to_string(epuck_variables.size()),
+        "local events: " + std::to_string(epuck_local_events.size()),
         "native functions: 30",
         "set bytecode from 0 : dest 1",
         "run from 0 : dest 1",
@@ -351,8 +370,9 @@ TEST(Interop, AsebacmdSendsEventsAndQueries)
           << run.output;
     };
 
-    // usermsg: event 0 (store) with two arguments, stored by the program.
-    const int16_t left = 1234, right = 567;
+    // usermsg: event 0 (store) with two arguments, stored by the program
+    // (speeds within ±1000: the firmware clamps them, hardware §6.1).
+    const int16_t left = 834, right = 567;
     asebacmd({ "usermsg", "0", std::to_string(left), std::to_string(right) });
     EXPECT_TRUE(client.receive_until(user_event(0, host_id, { left, right }), answer_timeout))
       << "the event asebacmd sent did not reach the network";
@@ -414,8 +434,8 @@ TEST(Interop, AsebaswitchRelaysTheRobot)
     auto is_tick = [](const Frame &frame) {
         return frame.type == tick && frame.source == first_robot;
     };
-    auto first = client.receive_until(is_tick, 3 * camera_period + answer_timeout);
-    auto second = client.receive_until(is_tick, 3 * camera_period + answer_timeout);
+    auto first = client.receive_until(is_tick, 3 * timer_period + answer_timeout);
+    auto second = client.receive_until(is_tick, 3 * timer_period + answer_timeout);
     ASSERT_TRUE(first && second) << "the emitted ticks did not come through the switch";
     auto first_words = decode_user_event(*first);
     auto second_words = decode_user_event(*second);
@@ -527,7 +547,7 @@ TEST(Interop, RobotsOfAGroupHearEachOther)
     EXPECT_EQ(presents, one_each);
 
     // group.aesl on every robot named e-puck: robot 1 says hello every
-    // camera event, the others echo.
+    // timer event, the others echo.
     ASSERT_NO_FATAL_FAILURE(load_with_massloader(scratch, robots.target(), "group.aesl"));
     AsebaClient client(robots.port(), answer_timeout);
     NodeDescription description = describe_epuck(client, first_robot);
@@ -543,7 +563,7 @@ TEST(Interop, RobotsOfAGroupHearEachOther)
             if (other != robot)
                 expected_mask = int16_t(expected_mask | (1 << other));
         const int16_t expected_sender = robot == first_robot ? 0 : first_robot;
-        // The robots may still be starting: give them some camera periods.
+        // The robots may still be starting: give them some timer periods.
         EXPECT_EQ(poll_variable(client, robot, echo_mask, expected_mask, group_settle_time),
                   expected_mask)
           << "echo_mask";

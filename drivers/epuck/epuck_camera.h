@@ -1,0 +1,59 @@
+// The camera (hardware §3.5): a PixelPlus PO3030K or PO6030K on I2C, set up
+// for RGB565 at a quarter of its resolution in each direction (the sensor
+// subsamples itself), over a window 480 pixels wide. A line is one row of
+// that window, 120 pixels, of which every second one is kept: 60 pixels,
+// split into red and blue (0..93) and green (0..94) as the upstream
+// firmware scales them (§3.5).
+
+#ifndef EPUCK_CAMERA_H
+#define EPUCK_CAMERA_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "hal/hal.h"
+
+#define EPUCK_CAMERA_LINE_PIXELS 60u
+// Rows of the window the line can be taken from.
+#define EPUCK_CAMERA_WINDOW_ROWS 120u
+// Pixels the sensor sends per row of the window, 2 bytes each.
+#define EPUCK_CAMERA_ROW_PIXELS 120u
+#define EPUCK_CAMERA_ROW_BYTES  (2u * EPUCK_CAMERA_ROW_PIXELS)
+// Where in the image the line is by default, in percent of its height (the
+// GCtronic firmware's cam.line, §6.1).
+#define EPUCK_CAMERA_DEFAULT_LINE 50
+
+typedef enum epuck_camera_model {
+    EPUCK_CAMERA_NONE, // no camera answered
+    EPUCK_CAMERA_PO3030,
+    EPUCK_CAMERA_PO6030
+} epuck_camera_model;
+
+typedef struct epuck_camera {
+    hal_board *board;
+    epuck_camera_model model;
+    uint32_t last_capture_ms;
+    bool captured; // at least one line read
+    uint8_t row[EPUCK_CAMERA_ROW_BYTES];
+} epuck_camera;
+
+// Resets the camera, identifies it by its registers 0x00/0x01 and writes its
+// configuration; returns false (model EPUCK_CAMERA_NONE) when no known
+// camera answers or a write fails.
+bool epuck_camera_init(epuck_camera *camera, hal_board *board);
+
+// The camera found at init.
+epuck_camera_model epuck_camera_model_of(const epuck_camera *camera);
+
+// When a camera is present and at least EPUCK_CAMERA_FRAME_INTERVAL_MS have
+// passed since the last line, reads the line at `line_percent` (0..99,
+// clamped) of the image height into `red`, `green`, `blue`
+// (EPUCK_CAMERA_LINE_PIXELS each) and returns true; otherwise returns false,
+// writing nothing. May wait up to one frame on the robot.
+bool epuck_camera_capture(epuck_camera *camera,
+                          int16_t line_percent,
+                          int16_t *red,
+                          int16_t *green,
+                          int16_t *blue);
+
+#endif

@@ -1,0 +1,101 @@
+// The modelled world's answers (see modelled_world.hpp).
+
+#include "modelled_world.hpp"
+
+namespace drivers_test
+{
+namespace
+{
+
+ModelledWorld &world_of(void *context)
+{
+    return *static_cast<ModelledWorld *>(context);
+}
+
+uint16_t adc_read(void *context, uint8_t channel, uint64_t cycle)
+{
+    ModelledWorld &world = world_of(context);
+    world.conversions.push_back({ channel, cycle });
+    if (channel >= HAL_ADC_PROXIMITY_0) {
+        unsigned sensor = channel - HAL_ADC_PROXIMITY_0;
+        hal_pin pulse = hal_pin(HAL_PIN_IR_PULSE_0_4 + sensor % 4);
+        uint16_t value = world.ambient[sensor];
+        if (world.output[pulse])
+            value = uint16_t(value - world.reflection[sensor]);
+        return value;
+    }
+    if (world.signal)
+        return world.signal(channel, cycle);
+    return world.channel[channel];
+}
+
+bool pin_read(void *context, hal_pin pin, uint64_t cycle)
+{
+    ModelledWorld &world = world_of(context);
+    if (world.input_signal)
+        return world.input_signal(pin, cycle);
+    return world.input[pin];
+}
+
+void pin_written(void *context, hal_pin pin, bool high, uint64_t cycle)
+{
+    ModelledWorld &world = world_of(context);
+    world.output[pin] = high;
+    world.changes.push_back({ pin, high, cycle });
+}
+
+bool i2c_write(void *context, uint8_t device, uint8_t reg, const uint8_t *bytes, uint16_t count)
+{
+    ModelledWorld &world = world_of(context);
+    if (!world.camera_present || device != HAL_I2C_CAMERA_ADDRESS)
+        return false;
+    for (uint16_t i = 0; i < count; i++) {
+        uint8_t at = uint8_t(reg + i);
+        world.camera_registers[at] = bytes[i];
+        world.camera_writes.push_back({ at, bytes[i] });
+    }
+    return true;
+}
+
+bool i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count)
+{
+    ModelledWorld &world = world_of(context);
+    if (!world.camera_present || device != HAL_I2C_CAMERA_ADDRESS)
+        return false;
+    for (uint16_t i = 0; i < count; i++)
+        bytes[i] = world.camera_registers[uint8_t(reg + i)];
+    return true;
+}
+
+uint8_t camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
+{
+    ModelledWorld &world = world_of(context);
+    if (index == 0)
+        world.camera_rows_read.push_back(row);
+    return world.camera_pixels ? world.camera_pixels(row, index) : 0;
+}
+
+} // namespace
+
+ModelledWorld::ModelledWorld()
+{
+    table = { this, adc_read, pin_read, pin_written, i2c_write, i2c_read, camera_byte };
+    input[HAL_PIN_REMOTE] = true; // idles high
+    input[HAL_PIN_BATTERY_LOW] = true;
+}
+
+void ModelledWorld::attach(hal_board *board)
+{
+    host_board_set_world(board, &table);
+}
+
+std::vector<PinChange> ModelledWorld::changes_of(hal_pin pin) const
+{
+    std::vector<PinChange> result;
+    for (const PinChange &change : changes)
+        if (change.pin == pin)
+            result.push_back(change);
+    return result;
+}
+
+} // namespace drivers_test
