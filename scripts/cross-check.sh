@@ -18,6 +18,7 @@ layer_of() {
     vm/node*) echo "node protocol" ;;
     vm/*) echo "vm" ;;
     native_functions/nat_dsp*) echo "dsp natives" ;;
+    drivers/*) echo "drivers" ;;
     native_functions/*) echo "natives" ;;
     *) echo "other" ;;
     esac

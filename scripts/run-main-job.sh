@@ -4,8 +4,9 @@
 # network on TCP port 33333 that Aseba Studio, the console and the Debian
 # tools can join. Stop it with Ctrl-C.
 #
-# The robots have no physical world yet (the Enki arena is to come): their
-# sensors read 0, so the controller drives straight and raises no alarm.
+# The robots stand in a flat, empty world (the Enki arena is to come): their
+# drivers read neutral sensors and no camera, so the controller drives
+# straight and raises no alarm.
 # Usage: run-main-job.sh BUILD_HOST_DIR [epuck-emu options...]
 set -euo pipefail
 bin=$1/bin

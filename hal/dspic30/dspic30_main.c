@@ -6,18 +6,8 @@
 #include "dspic30_registers.h"
 #include "firmware/epuck_firmware.h"
 
-#define SELECTOR_NODE_MASK 0x7u // node id = (selector & 7) + 1 (§6.1)
-
 static hal_board board;
 static epuck_firmware firmware;
-
-static uint16_t read_selector(void)
-{
-    return (uint16_t)((hal_pin_read(&board, HAL_PIN_SELECTOR_0) ? 1u : 0u) |
-                      (hal_pin_read(&board, HAL_PIN_SELECTOR_1) ? 2u : 0u) |
-                      (hal_pin_read(&board, HAL_PIN_SELECTOR_2) ? 4u : 0u) |
-                      (hal_pin_read(&board, HAL_PIN_SELECTOR_3) ? 8u : 0u));
-}
 
 int main(void)
 {
@@ -28,7 +18,8 @@ int main(void)
         hal_reset(&board);
     }
     dspic30_board_init(&board);
-    epuck_firmware_init(&firmware, &board, (uint16_t)((read_selector() & SELECTOR_NODE_MASK) + 1u));
+    // Node id 0: the firmware takes it from the selector.
+    epuck_firmware_init(&firmware, &board, 0);
     for (;;) {
         if (!epuck_firmware_poll(&firmware))
             hal_idle(&board);

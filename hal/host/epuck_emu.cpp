@@ -45,8 +45,10 @@ Options:
   --quiet           no status line
   -h, --help        show this help
 
-The robots have no physical world yet: their sensor variables stay 0, and
-their local events ir_sensors and camera fire at the hardware's rates.
+The robots stand in a flat, empty world (no physics yet): their drivers read
+neutral sensor values (no obstacle, robot level, silence), ir_sensors fires
+after each full IR update (about 63 Hz) and timer every timer.period ms; the
+flat world has no camera, so the camera event does not fire.
 )";
 
 std::atomic<bool> stop_requested{ false };
