@@ -8,7 +8,7 @@
 
 #include "drivers/epuck/epuck_battery.h"
 #include "drivers/epuck/epuck_selector.h"
-#include "native_functions/nat_standard.h"
+#include "epuck_natives.h"
 
 static const node_named_variable epuck_variables[] = {
 #define EPUCK_VARIABLE_DESCRIPTION(identifier, name, size) { name, size },
@@ -29,18 +29,11 @@ static const node_local_event epuck_local_events[] = {
 #undef EPUCK_LOCAL_EVENT_DESCRIPTION
 };
 
-static const vm_native *const epuck_native_list[] = { NAT_STANDARD_LIST };
-
-static const vm_native_table epuck_natives = {
-    epuck_native_list,
-    sizeof(epuck_native_list) / sizeof(epuck_native_list[0]),
-};
-
 const node_description epuck_description = {
     EPUCK_NAME,         NODE_PROTOCOL_VERSION,
     epuck_variables,    sizeof(epuck_variables) / sizeof(epuck_variables[0]),
     epuck_local_events, EPUCK_LOCAL_EVENT_COUNT,
-    &epuck_natives,
+    &epuck_native_table,
 };
 
 // The node streams its frames to the board's link.

@@ -9,6 +9,8 @@
 #include <sstream>
 
 #include "dsp_node.hpp"
+#include "native_functions/nat_dsp.h"
+#include "native_functions/nat_standard.h"
 #include "tests/compiler/reference_oracle.hpp"
 #include "tools/compiler/aesl.hpp"
 #include "tools/compiler/compiler.hpp"
@@ -21,19 +23,16 @@ constexpr uint16_t samples = 32;
 constexpr uint16_t sender = 2;
 constexpr uint16_t local_event_base = 0xFFFE; // first local event (init is 0xFFFF)
 
+// The e-puck target, which exports the DSP natives right after the standard
+// ones (firmware/epuck_natives.c).
 aseba::TargetDescription epuck_with_dsp()
 {
     auto target = aseba::epuck_target();
     const vm_native *const natives[] = { NAT_DSP_LIST };
-    for (const vm_native *native : natives) {
-        aseba::NativeFunction function;
-        function.name = native->name;
-        function.description = native->description;
-        for (uint8_t p = 0; p < native->parameter_count; ++p)
-            function.parameters.push_back(
-              { native->parameters[p].name, native->parameters[p].size });
-        target.native_functions.push_back(function);
-    }
+    EXPECT_EQ(target.native_functions.size(), size_t(NAT_STANDARD_COUNT + NAT_DSP_COUNT));
+    for (size_t i = 0; i < NAT_DSP_COUNT && NAT_STANDARD_COUNT + i < target.native_functions.size();
+         ++i)
+        EXPECT_EQ(target.native_functions[NAT_STANDARD_COUNT + i].name, natives[i]->name);
     return target;
 }
 

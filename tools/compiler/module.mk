@@ -17,3 +17,5 @@ aseba_compiler_SOURCES := \
     tools/compiler/disassembler.cpp \
     tools/compiler/error_format.cpp \
     tools/compiler/program_file.cpp
+# The e-puck preset lists the firmware's own native table, so both agree.
+aseba_compiler_SOURCES += firmware/epuck_natives.c

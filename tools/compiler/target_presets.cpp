@@ -6,6 +6,7 @@
 
 extern "C" {
 #include "firmware/epuck_description.h"
+#include "firmware/epuck_natives.h"
 #include "nat_standard.h"
 }
 
@@ -24,11 +25,12 @@ constexpr uint16_t PROTOCOL_VERSION = 5;
 
 } // namespace
 
-std::vector<NativeFunction> standard_native_functions()
+// A C native table as the compiler sees natives.
+static std::vector<NativeFunction> native_functions(const vm_native_table &table)
 {
     std::vector<NativeFunction> natives;
-    for (uint16_t i = 0; i < nat_standard_table.count; ++i) {
-        const vm_native &native = *nat_standard_table.natives[i];
+    for (uint16_t i = 0; i < table.count; ++i) {
+        const vm_native &native = *table.natives[i];
         NativeFunction function;
         function.name = native.name;
         function.description = native.description;
@@ -37,6 +39,11 @@ std::vector<NativeFunction> standard_native_functions()
         natives.push_back(function);
     }
     return natives;
+}
+
+std::vector<NativeFunction> standard_native_functions()
+{
+    return native_functions(nat_standard_table);
 }
 
 TargetDescription epuck_target()
@@ -57,7 +64,7 @@ TargetDescription epuck_target()
     EPUCK_LOCAL_EVENT_LIST(EPUCK_ADD_EVENT)
 #undef EPUCK_ADD_EVENT
     target.variables_size = static_cast<uint16_t>(named_words + EPUCK_FREE_WORDS);
-    target.native_functions = standard_native_functions();
+    target.native_functions = native_functions(epuck_native_table);
     return target;
 }
 
