@@ -67,12 +67,6 @@ static uint16_t forward(const deque *queue, uint16_t slot, uint16_t offset)
     return offset >= room ? offset - room : slot + offset;
 }
 
-// Ring slot one before `slot`.
-static uint16_t backward(const deque *queue, uint16_t slot)
-{
-    return slot == 0 ? queue->capacity - 1 : slot - 1;
-}
-
 static int16_t *ring(const deque *queue)
 {
     return queue->words + DEQUE_HEADER_WORDS;
@@ -94,11 +88,12 @@ static bool check_index(vm_state *vm, const deque *queue, int16_t index)
     return true;
 }
 
-// Error unless `end` (one past the last logical position used) <= n.
-static bool check_stored(vm_state *vm, const deque *queue, int32_t end)
+// Error unless the `size` words from logical position `index` are stored
+// (index + size <= n); the report names index + size, their end.
+static bool check_stored(vm_state *vm, const deque *queue, uint16_t index, uint16_t size)
 {
-    if (end > queue->count) {
-        vm_error_array_access(vm, queue->length, (uint16_t)end);
+    if (size > queue->count || index > queue->count - size) {
+        vm_error_array_access(vm, queue->length, (uint16_t)(index + size));
         return false;
     }
     return true;
@@ -128,27 +123,30 @@ static void move_words(const deque *queue,
     int16_t *words = ring(queue);
     uint16_t to_slot = forward(queue, queue->start, to);
     uint16_t from_slot = forward(queue, queue->start, from);
+    // One slot back is K - 1 slots forward.
+    uint16_t step = descending ? queue->capacity - 1 : 1;
     for (; count > 0; --count) {
         words[to_slot] = words[from_slot];
-        to_slot = descending ? backward(queue, to_slot) : forward(queue, to_slot, 1);
-        from_slot = descending ? backward(queue, from_slot) : forward(queue, from_slot, 1);
+        to_slot = forward(queue, to_slot, step);
+        from_slot = forward(queue, from_slot, step);
     }
 }
 
-static void read_words(const deque *queue, uint16_t index, int16_t *dest, uint16_t size)
+// Copies `size` words between `tuple` and the ring from logical position
+// `index` on: into the ring when `into_ring`, out of it otherwise.
+static void copy_words(const deque *queue,
+                       uint16_t index,
+                       int16_t *tuple,
+                       uint16_t size,
+                       bool into_ring)
 {
+    int16_t *words = ring(queue);
     uint16_t slot = forward(queue, queue->start, index);
     for (uint16_t i = 0; i < size; ++i) {
-        dest[i] = ring(queue)[slot];
-        slot = forward(queue, slot, 1);
-    }
-}
-
-static void write_words(const deque *queue, uint16_t index, const int16_t *src, uint16_t size)
-{
-    uint16_t slot = forward(queue, queue->start, index);
-    for (uint16_t i = 0; i < size; ++i) {
-        ring(queue)[slot] = src[i];
+        if (into_ring)
+            words[slot] = tuple[i];
+        else
+            tuple[i] = words[slot];
         slot = forward(queue, slot, 1);
     }
 }
@@ -156,7 +154,7 @@ static void write_words(const deque *queue, uint16_t index, const int16_t *src, 
 // Inserts src before logical position `index` (< K; size <= K - n), moving
 // whichever side of the ring is shorter, as upstream does (without its
 // defect for 1 <= index < n/2, language.md §13.2).
-static void insert_words(deque *queue, uint16_t index, const int16_t *src, uint16_t size)
+static void insert_words(deque *queue, uint16_t index, int16_t *src, uint16_t size)
 {
     if (index < queue->count / 2) {
         // Start `size` slots earlier, and move the first `index` words there.
@@ -167,7 +165,7 @@ static void insert_words(deque *queue, uint16_t index, const int16_t *src, uint1
         uint16_t last = queue->count - 1;
         move_words(queue, last + size, last, queue->count - index, true);
     }
-    write_words(queue, index, src, size);
+    copy_words(queue, index, src, size, true);
     queue->count += size;
     store_header(queue);
 }
@@ -230,30 +228,29 @@ static bool open_indexed(vm_state *vm,
     return check_index(vm, queue, *index);
 }
 
-void nat_deque_get_function(vm_state *vm, const int16_t *arguments)
+// deque.get and deque.set: copies between the tuple and the stored words
+// from index on, into the deque when `into_deque`.
+static void transfer_at_index(vm_state *vm, const int16_t *arguments, bool into_deque)
 {
     deque queue;
-    int16_t *dest;
+    int16_t *tuple;
     uint16_t size;
     int16_t index;
-    if (!open_indexed(vm, arguments, &queue, &dest, &size, &index))
+    if (!open_indexed(vm, arguments, &queue, &tuple, &size, &index))
         return;
-    if (!check_stored(vm, &queue, (int32_t)index + size))
+    if (!check_stored(vm, &queue, (uint16_t)index, size))
         return;
-    read_words(&queue, (uint16_t)index, dest, size);
+    copy_words(&queue, (uint16_t)index, tuple, size, into_deque);
+}
+
+void nat_deque_get_function(vm_state *vm, const int16_t *arguments)
+{
+    transfer_at_index(vm, arguments, false);
 }
 
 void nat_deque_set_function(vm_state *vm, const int16_t *arguments)
 {
-    deque queue;
-    int16_t *src;
-    uint16_t size;
-    int16_t index;
-    if (!open_indexed(vm, arguments, &queue, &src, &size, &index))
-        return;
-    if (!check_stored(vm, &queue, (int32_t)index + size))
-        return;
-    write_words(&queue, (uint16_t)index, src, size);
+    transfer_at_index(vm, arguments, true);
 }
 
 void nat_deque_insert_function(vm_state *vm, const int16_t *arguments)
@@ -288,7 +285,7 @@ void nat_deque_erase_function(vm_state *vm, const int16_t *arguments)
         vm_error_array_access(vm, queue.length, (uint16_t)(index + size));
         return;
     }
-    if (!check_stored(vm, &queue, (int32_t)index + size))
+    if (!check_stored(vm, &queue, (uint16_t)index, (uint16_t)size))
         return;
     erase_words(&queue, (uint16_t)index, (uint16_t)size);
 }
@@ -307,45 +304,46 @@ static bool open_end(vm_state *vm,
     return *tuple != NULL;
 }
 
-void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments)
+// deque.push_front and push_back.
+static void push(vm_state *vm, const int16_t *arguments, bool at_back)
 {
     deque queue;
     int16_t *src;
     uint16_t size;
     if (!open_end(vm, arguments, &queue, &src, &size) || !check_room(vm, &queue, size))
         return;
-    insert_words(&queue, 0, src, size);
+    insert_words(&queue, at_back ? queue.count : 0, src, size);
+}
+
+// deque.pop_front and pop_back.
+static void pop(vm_state *vm, const int16_t *arguments, bool at_back)
+{
+    deque queue;
+    int16_t *dest;
+    uint16_t size;
+    if (!open_end(vm, arguments, &queue, &dest, &size) || !check_stored(vm, &queue, 0, size))
+        return;
+    uint16_t index = at_back ? queue.count - size : 0;
+    copy_words(&queue, index, dest, size, false);
+    erase_words(&queue, index, size);
+}
+
+void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments)
+{
+    push(vm, arguments, false);
 }
 
 void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments)
 {
-    deque queue;
-    int16_t *src;
-    uint16_t size;
-    if (!open_end(vm, arguments, &queue, &src, &size) || !check_room(vm, &queue, size))
-        return;
-    insert_words(&queue, queue.count, src, size);
+    push(vm, arguments, true);
 }
 
 void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments)
 {
-    deque queue;
-    int16_t *dest;
-    uint16_t size;
-    if (!open_end(vm, arguments, &queue, &dest, &size) || !check_stored(vm, &queue, size))
-        return;
-    read_words(&queue, 0, dest, size);
-    erase_words(&queue, 0, size);
+    pop(vm, arguments, false);
 }
 
 void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments)
 {
-    deque queue;
-    int16_t *dest;
-    uint16_t size;
-    if (!open_end(vm, arguments, &queue, &dest, &size) || !check_stored(vm, &queue, size))
-        return;
-    uint16_t index = queue.count - size;
-    read_words(&queue, index, dest, size);
-    erase_words(&queue, index, size);
+    pop(vm, arguments, true);
 }

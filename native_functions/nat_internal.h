@@ -39,6 +39,16 @@ static inline uint16_t nat_size_after(const int16_t *arguments, uint16_t paramet
     return nat_length(arguments[parameter_count]);
 }
 
+typedef int16_t (*nat_unary_operation)(int16_t value);
+typedef int16_t (*nat_binary_operation)(int16_t left, int16_t right);
+
+// dest[i] = operation(src[i]) for the layout &dest, &src, N, in increasing i.
+void nat_elementwise_unary(vm_state *vm, const int16_t *arguments, nat_unary_operation operation);
+
+// dest[i] = operation(src1[i], src2[i]) for the layout &dest, &src1, &src2, N,
+// in increasing i.
+void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_operation operation);
+
 // nat_math.c
 void nat_math_copy_function(vm_state *vm, const int16_t *arguments);
 void nat_math_fill_function(vm_state *vm, const int16_t *arguments);

@@ -17,22 +17,6 @@
 // Shifts of math.dot at and beyond the width of the 32-bit accumulator.
 #define DOT_ACCUMULATOR_BITS 32
 
-typedef int16_t (*binary_operation)(int16_t left, int16_t right);
-
-// dest[i] = operation(src1[i], src2[i]) for the layout &dest, &src1, &src2, N.
-static void elementwise(vm_state *vm, const int16_t *arguments, binary_operation operation)
-{
-    int16_t *spans[3];
-    uint16_t length = nat_size_after(arguments, 3);
-    if (!nat_spans(vm, arguments, 3, length, spans))
-        return;
-    int16_t *dest = spans[0];
-    const int16_t *src1 = spans[1];
-    const int16_t *src2 = spans[2];
-    for (uint16_t i = 0; i < length; ++i)
-        dest[i] = operation(src1[i], src2[i]);
-}
-
 static int16_t add(int16_t left, int16_t right)
 {
     return nat_wrap((int32_t)left + right);
@@ -58,14 +42,15 @@ static int16_t maximum(int16_t left, int16_t right)
     return left > right ? left : right;
 }
 
+// math.copy is the identity, element by element.
+static int16_t identity(int16_t value)
+{
+    return value;
+}
+
 void nat_math_copy_function(vm_state *vm, const int16_t *arguments)
 {
-    int16_t *spans[2];
-    uint16_t length = nat_size_after(arguments, 2);
-    if (!nat_spans(vm, arguments, 2, length, spans))
-        return;
-    for (uint16_t i = 0; i < length; ++i)
-        spans[0][i] = spans[1][i];
+    nat_elementwise_unary(vm, arguments, identity);
 }
 
 void nat_math_fill_function(vm_state *vm, const int16_t *arguments)
@@ -99,47 +84,59 @@ void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments)
 
 void nat_math_add_function(vm_state *vm, const int16_t *arguments)
 {
-    elementwise(vm, arguments, add);
+    nat_elementwise_binary(vm, arguments, add);
 }
 
 void nat_math_sub_function(vm_state *vm, const int16_t *arguments)
 {
-    elementwise(vm, arguments, subtract);
+    nat_elementwise_binary(vm, arguments, subtract);
 }
 
 void nat_math_mul_function(vm_state *vm, const int16_t *arguments)
 {
-    elementwise(vm, arguments, multiply);
+    nat_elementwise_binary(vm, arguments, multiply);
+}
+
+// math.div and math.muldiv: dest[i] = a[i] * b[i] / c[i] in 32 bits, for
+// the layout &dest, &a, &b, &c, N, or &dest, &a, &c, N without a factor b
+// (math.div). A zero c[i] stops the VM before dest[i] is written.
+static void divide_elementwise(vm_state *vm, const int16_t *arguments, bool with_factor)
+{
+    int16_t *spans[4];
+    uint16_t sources = with_factor ? 3 : 2;
+    uint16_t length = nat_size_after(arguments, sources + 1);
+    if (!nat_spans(vm, arguments, sources + 1, length, spans))
+        return;
+    int16_t *dest = spans[0];
+    const int16_t *a = spans[1];
+    const int16_t *b = spans[2]; // read only with_factor
+    const int16_t *c = spans[sources];
+    for (uint16_t i = 0; i < length; ++i) {
+        int16_t divisor = c[i];
+        if (divisor == 0) {
+            vm_error_division_by_zero(vm);
+            return;
+        }
+        // |a * b| <= 2^30 fits, and so does its quotient by -1; without b,
+        // -32768 / -1 wraps instead of trapping.
+        int32_t dividend = with_factor ? (int32_t)a[i] * b[i] : a[i];
+        dest[i] = nat_wrap(dividend / divisor);
+    }
 }
 
 void nat_math_div_function(vm_state *vm, const int16_t *arguments)
 {
-    int16_t *spans[3];
-    uint16_t length = nat_size_after(arguments, 3);
-    if (!nat_spans(vm, arguments, 3, length, spans))
-        return;
-    int16_t *dest = spans[0];
-    const int16_t *dividend = spans[1];
-    const int16_t *divisor = spans[2];
-    for (uint16_t i = 0; i < length; ++i) {
-        int16_t denominator = divisor[i];
-        if (denominator == 0) {
-            vm_error_division_by_zero(vm);
-            return;
-        }
-        // In 32 bits, so that -32768 / -1 wraps instead of trapping.
-        dest[i] = nat_wrap((int32_t)dividend[i] / denominator);
-    }
+    divide_elementwise(vm, arguments, false);
 }
 
 void nat_math_min_function(vm_state *vm, const int16_t *arguments)
 {
-    elementwise(vm, arguments, minimum);
+    nat_elementwise_binary(vm, arguments, minimum);
 }
 
 void nat_math_max_function(vm_state *vm, const int16_t *arguments)
 {
-    elementwise(vm, arguments, maximum);
+    nat_elementwise_binary(vm, arguments, maximum);
 }
 
 void nat_math_clamp_function(vm_state *vm, const int16_t *arguments)
@@ -185,14 +182,16 @@ void nat_math_dot_function(vm_state *vm, const int16_t *arguments)
 
     // Upstream leaves shifts outside 0 ... 32 to the processor; we define
     // them (bytecode.md §11): negative is no shift, 32 keeps the sign.
-    if (shift > DOT_ACCUMULATOR_BITS)
+    if (shift > DOT_ACCUMULATOR_BITS) {
         *dest = 0;
-    else if (shift == DOT_ACCUMULATOR_BITS)
-        *dest = accumulator < 0 ? -1 : 0;
-    else if (shift < 0)
-        *dest = nat_wrap(accumulator);
-    else
+    } else {
+        if (shift < 0)
+            shift = 0;
+        // Shifting by 31 already leaves only the sign.
+        if (shift == DOT_ACCUMULATOR_BITS)
+            shift = DOT_ACCUMULATOR_BITS - 1;
         *dest = nat_wrap(accumulator >> shift);
+    }
 }
 
 void nat_math_stat_function(vm_state *vm, const int16_t *arguments)
@@ -278,23 +277,7 @@ void nat_math_sort_function(vm_state *vm, const int16_t *arguments)
 
 void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments)
 {
-    int16_t *spans[4];
-    uint16_t length = nat_size_after(arguments, 4);
-    if (!nat_spans(vm, arguments, 4, length, spans))
-        return;
-    int16_t *dest = spans[0];
-    const int16_t *a = spans[1];
-    const int16_t *b = spans[2];
-    const int16_t *c = spans[3];
-    for (uint16_t i = 0; i < length; ++i) {
-        int16_t divisor = c[i];
-        if (divisor == 0) {
-            vm_error_division_by_zero(vm);
-            return;
-        }
-        // |a * b| <= 2^30 fits, and so does its quotient by -1.
-        dest[i] = nat_wrap((int32_t)a[i] * b[i] / divisor);
-    }
+    divide_elementwise(vm, arguments, true);
 }
 
 void nat_math_rand_function(vm_state *vm, const int16_t *arguments)

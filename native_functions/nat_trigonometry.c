@@ -57,41 +57,30 @@ static const int16_t ATAN[161] = {
 
 int16_t nat_sin(int16_t angle)
 {
-    // Fold the angle onto the first quarter turn, 0 ... pi/2 excluded.
-    int32_t folded;
+    // Fold |angle| (32768 for -pi) onto the first quarter turn.
     bool negative = angle < 0;
-    if (negative) {
-        if (angle == -QUARTER_TURN)
-            return -SINE_ONE;
-        folded = angle < -QUARTER_TURN ? HALF_TURN + (int32_t)angle : -(int32_t)angle;
-    } else {
-        if (angle == QUARTER_TURN)
-            return SINE_ONE;
-        folded = angle > QUARTER_TURN ? HALF_TURN - (int32_t)angle : angle;
-    }
+    uint16_t folded = (uint16_t)(negative ? -(int32_t)angle : angle);
+    if (folded > QUARTER_TURN)
+        folded = (uint16_t)(HALF_TURN - folded);
 
-    // Interpolate linearly between two table entries.
-    int16_t index = (int16_t)(folded >> SINE_STEP_BITS);
-    int32_t fraction = folded & (SINE_STEP - 1);
-    int16_t sine =
-      nat_wrap(((int32_t)SINE[index] * (SINE_STEP - fraction) + SINE[index + 1] * fraction) >>
-               SINE_STEP_BITS);
-    return negative ? (int16_t)-sine : sine;
+    uint16_t sine;
+    if (folded == QUARTER_TURN) {
+        sine = SINE_ONE; // the last entry: there is none after it to interpolate
+    } else {
+        // Interpolate linearly between two entries: SINE[i] (128 - f) / 128 +
+        // SINE[i + 1] f / 128, rounded down, is SINE[i] + step f / 128; the
+        // table rises by at most 403 a step, so step * f fits 16 bits.
+        uint16_t index = folded >> SINE_STEP_BITS;
+        uint16_t fraction = folded & (SINE_STEP - 1);
+        uint16_t step = (uint16_t)(SINE[index + 1] - SINE[index]);
+        sine = (uint16_t)(SINE[index] + (uint16_t)(step * fraction) / SINE_STEP);
+    }
+    return (int16_t)(negative ? -(int16_t)sine : (int16_t)sine);
 }
 
 int16_t nat_cos(int16_t angle)
 {
     return nat_sin(nat_wrap((int32_t)angle + QUARTER_TURN));
-}
-
-// Position of the highest set bit of a non-zero `value` (31 when negative).
-static uint16_t highest_bit(int32_t value)
-{
-    uint32_t bits = (uint32_t)value;
-    uint16_t position = 0;
-    while (bits >>= 1)
-        ++position;
-    return position;
 }
 
 int16_t nat_atan2(int16_t y, int16_t x)
@@ -108,20 +97,26 @@ int16_t nat_atan2(int16_t y, int16_t x)
     } else {
         // |y| * 65536 is at most 2^31 in magnitude, and |x| is never -1.
         int32_t ratio = ((int32_t)y_magnitude * ((int32_t)1 << ATAN_FRACTION_BITS)) / x_magnitude;
-        uint16_t octave = ratio == 0 ? 0 : highest_bit(ratio);
-        if (octave < ATAN_LOWEST_OCTAVE) {
+        if (ratio >= 0 && ratio < ((int32_t)1 << ATAN_LOWEST_OCTAVE)) {
             angle = nat_wrap(((int32_t)ATAN[0] * ratio) >> ATAN_LOWEST_OCTAVE);
         } else {
-            // The bits below the top one, computed modulo 2^32 as upstream
-            // does: for a negative ratio this drops its sign bit.
-            uint32_t below_top = (uint32_t)ratio - ((uint32_t)1 << octave);
-            int16_t position = (int16_t)(below_top >> (octave - ATAN_POSITION_BITS));
-            uint16_t bin = (uint16_t)(octave - ATAN_LOWEST_OCTAVE) * ATAN_BINS_PER_OCTAVE +
-                           (uint16_t)(position >> ATAN_BIN_SHIFT);
-            int32_t weight = position & (ATAN_BIN_WEIGHT - 1);
-            angle =
-              nat_wrap(((int32_t)ATAN[bin] * (ATAN_BIN_WEIGHT - weight) + ATAN[bin + 1] * weight) >>
-                       ATAN_BIN_SHIFT);
+            // Keep the top bit of the ratio and the ATAN_POSITION_BITS below
+            // it, moving one octave (8 bins) on for each bit dropped; modulo
+            // 2^32, as upstream, so the top bit of a negative ratio is its sign.
+            uint32_t top = (uint32_t)ratio >> (ATAN_LOWEST_OCTAVE - ATAN_POSITION_BITS);
+            uint16_t bin = 0;
+            while (top >> (ATAN_POSITION_BITS + 1) != 0) {
+                top >>= 1;
+                bin += ATAN_BINS_PER_OCTAVE;
+            }
+            int16_t position = (int16_t)(top - ((uint32_t)1 << ATAN_POSITION_BITS));
+            bin += (uint16_t)(position >> ATAN_BIN_SHIFT);
+            // Interpolate as sin does: (ATAN[b] (32 - w) + ATAN[b + 1] w) / 32
+            // rounded down is ATAN[b] + step w / 32 rounded down (an
+            // arithmetic shift), and |step| <= 520 keeps step * w in 16 bits.
+            int16_t weight = position & (ATAN_BIN_WEIGHT - 1);
+            int16_t step = (int16_t)(ATAN[bin + 1] - ATAN[bin]);
+            angle = (int16_t)(ATAN[bin] + ((int16_t)(step * weight) >> ATAN_BIN_SHIFT));
         }
         if (x < 0)
             angle = nat_wrap(HALF_TURN - (int32_t)angle);
@@ -151,37 +146,19 @@ int16_t nat_sqrt(int16_t x)
     return (int16_t)root;
 }
 
-typedef int16_t (*unary_function)(int16_t value);
-
-// dest[i] = function(x[i]) for the layout &dest, &x, N.
-static void elementwise_unary(vm_state *vm, const int16_t *arguments, unary_function function)
-{
-    int16_t *spans[2];
-    uint16_t length = nat_size_after(arguments, 2);
-    if (!nat_spans(vm, arguments, 2, length, spans))
-        return;
-    for (uint16_t i = 0; i < length; ++i)
-        spans[0][i] = function(spans[1][i]);
-}
-
 void nat_math_atan2_function(vm_state *vm, const int16_t *arguments)
 {
-    int16_t *spans[3];
-    uint16_t length = nat_size_after(arguments, 3);
-    if (!nat_spans(vm, arguments, 3, length, spans))
-        return;
-    for (uint16_t i = 0; i < length; ++i)
-        spans[0][i] = nat_atan2(spans[1][i], spans[2][i]);
+    nat_elementwise_binary(vm, arguments, nat_atan2);
 }
 
 void nat_math_sin_function(vm_state *vm, const int16_t *arguments)
 {
-    elementwise_unary(vm, arguments, nat_sin);
+    nat_elementwise_unary(vm, arguments, nat_sin);
 }
 
 void nat_math_cos_function(vm_state *vm, const int16_t *arguments)
 {
-    elementwise_unary(vm, arguments, nat_cos);
+    nat_elementwise_unary(vm, arguments, nat_cos);
 }
 
 void nat_math_rot2_function(vm_state *vm, const int16_t *arguments)

@@ -17,10 +17,9 @@
 
 // Payload bytes each host command needs (protocol.md §3): `dest` and the
 // fields after it.
-#define BYTES_DEST         2
+#define BYTES_FIRST_WORD   2 // dest, or the version of a broadcast
 #define BYTES_DEST_AND_ONE 4
 #define BYTES_DEST_AND_TWO 6
-#define BYTES_VERSION      2
 
 // Payload word positions of addressed commands.
 #define PAYLOAD_DEST   0
@@ -46,31 +45,25 @@ void node_init(node_state *node,
                const node_hooks *hooks)
 {
     static const vm_native_table no_natives = { NULL, 0 };
-    vm_memory vm_memory_with_args = *memory;
+    static const node_hooks no_hooks = { NULL, NULL, NULL, NULL };
+    static const node_error_counters no_errors = { 0, 0, 0, 0, 0 };
 
-    // `args` is the third named variable (bytecode.md §7).
-    if (description->variable_count > VM_NAMED_ARGS)
-        vm_memory_with_args.args_size = description->variables[VM_NAMED_ARGS].size;
     vm_init(&node->vm,
-            &vm_memory_with_args,
+            memory,
             node_id,
             description->natives != NULL ? description->natives : &no_natives,
             &node_vm_callbacks,
             node);
+    // `args` is the third named variable (bytecode.md §7).
+    if (description->variable_count > VM_NAMED_ARGS)
+        node->vm.memory.args_size = description->variables[VM_NAMED_ARGS].size;
     // The first named variable holds the node id (protocol.md §8.4).
     if (node->vm.memory.variables_size > 0)
         node->vm.memory.variables[0] = (int16_t)node_id;
 
     node->description = description;
     node->transport = *transport;
-    if (hooks != NULL) {
-        node->hooks = *hooks;
-    } else {
-        node->hooks.write_bytecode = NULL;
-        node->hooks.reboot = NULL;
-        node->hooks.suspend_to_ram = NULL;
-        node->hooks.context = NULL;
-    }
+    node->hooks = hooks != NULL ? *hooks : no_hooks;
     node->received = 0;
     node->frame_ready = false;
     node->resynchronising = false;
@@ -78,11 +71,7 @@ void node_init(node_state *node,
     node->transmit_fill = 0;
     node->transmit_left = 0;
     node->pending_local_events = 0;
-    node->errors.oversize = 0;
-    node->errors.truncated = 0;
-    node->errors.malformed = 0;
-    node->errors.wrong_destination = 0;
-    node->errors.ignored = 0;
+    node->errors = no_errors;
 }
 
 // --- receiving ---------------------------------------------------------------
@@ -143,16 +132,15 @@ uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, ui
 
 // --- handling a frame --------------------------------------------------------
 
-// Turns the little-endian payload into native words where it lies, so that
-// it can be handed to the VM; returns the first payload word.
-static uint16_t *payload_words(node_state *node, uint16_t length)
+// Turns the little-endian frame, header and payload, into native words where
+// it lies, so that the payload can be handed to the VM.
+static void to_native_words(node_state *node)
 {
-    uint16_t *words = node->frame + FRAME_PAYLOAD;
+    uint16_t count = (uint16_t)(FRAME_PAYLOAD + frame_word(node, FRAME_LENGTH) / 2);
     uint16_t i;
 
-    for (i = 0; i < length / 2; i++)
-        words[i] = frame_word(node, (uint16_t)(FRAME_PAYLOAD + i));
-    return words;
+    for (i = 0; i < count; i++)
+        node->frame[i] = frame_word(node, i);
 }
 
 // Bytes the payload of host command `type` needs at least.
@@ -165,7 +153,7 @@ static uint16_t command_minimum_length(uint16_t type)
     case NODE_MSG_SET_VARIABLES:
     case NODE_MSG_GET_NODE_DESCRIPTION: return BYTES_DEST_AND_ONE;
     case NODE_MSG_GET_VARIABLES: return BYTES_DEST_AND_TWO;
-    default: return BYTES_DEST;
+    default: return BYTES_FIRST_WORD;
     }
 }
 
@@ -239,11 +227,14 @@ static void handle_command(node_state *node, uint16_t type, const uint16_t *payl
 
 static void handle_frame(node_state *node)
 {
-    uint16_t length = frame_word(node, FRAME_LENGTH);
-    uint16_t source = frame_word(node, FRAME_SOURCE);
-    uint16_t type = frame_word(node, FRAME_TYPE);
-    uint16_t words = (uint16_t)(length / 2);
-    const uint16_t *payload;
+    const uint16_t *payload = node->frame + FRAME_PAYLOAD;
+    uint16_t length, source, type, words;
+
+    to_native_words(node);
+    length = node->frame[FRAME_LENGTH];
+    source = node->frame[FRAME_SOURCE];
+    type = node->frame[FRAME_TYPE];
+    words = (uint16_t)(length / 2);
 
     // Bootloader messages, other nodes' messages and unknown types.
     if (type >= NODE_FIRST_SYSTEM_TYPE &&
@@ -256,26 +247,24 @@ static void handle_frame(node_state *node)
         count_error(&node->errors.malformed);
         return;
     }
-    payload = payload_words(node, length);
 
     if (type < NODE_FIRST_SYSTEM_TYPE) {
         vm_receive_event(&node->vm, type, source, (const int16_t *)payload, words);
         return;
     }
+    // Every system message starts with a word: the host's protocol version in
+    // the two broadcasts, `dest` in the others.
+    if (length < BYTES_FIRST_WORD) {
+        count_error(&node->errors.malformed);
+        return;
+    }
     if (type == NODE_MSG_LIST_NODES || type == NODE_MSG_GET_DESCRIPTION) {
         uint16_t version = NODE_PROTOCOL_VERSION;
 
-        if (length < BYTES_VERSION) {
-            count_error(&node->errors.malformed);
-        } else if (type == NODE_MSG_LIST_NODES) {
+        if (type == NODE_MSG_LIST_NODES)
             node_send_words(node, NODE_MSG_NODE_PRESENT, &version, 1);
-        } else if (payload[0] <= NODE_OLDEST_DESCRIPTION_VERSION) {
+        else if (payload[0] <= NODE_OLDEST_DESCRIPTION_VERSION)
             node_send_description(node);
-        }
-        return;
-    }
-    if (length < BYTES_DEST) {
-        count_error(&node->errors.malformed);
         return;
     }
     if (payload[PAYLOAD_DEST] != node->vm.node_id) {
@@ -303,13 +292,16 @@ bool node_raise_local_event(node_state *node, uint16_t index)
 // local events wait for each other instead of killing one another.
 static void start_local_event(node_state *node)
 {
-    uint16_t index;
+    uint16_t index = 0;
+    uint32_t bit = 1;
 
     if (node->pending_local_events == 0 || vm_is_event_active(&node->vm))
         return;
-    for (index = 0; !(node->pending_local_events & ((uint32_t)1 << index)); index++)
-        ;
-    node->pending_local_events &= ~((uint32_t)1 << index);
+    while (!(node->pending_local_events & bit)) {
+        bit <<= 1;
+        index++;
+    }
+    node->pending_local_events &= ~bit;
     if (node->vm.memory.variables_size > VM_NAMED_SOURCE)
         node->vm.memory.variables[VM_NAMED_SOURCE] = (int16_t)node->vm.node_id;
     vm_setup_event(&node->vm, (uint16_t)(VM_EVENT_LOCAL_FIRST - index));

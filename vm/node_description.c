@@ -46,6 +46,14 @@ static uint8_t parameter_name_length(const vm_native *native, uint16_t index, ui
     return length;
 }
 
+// The room parameter names start with: what the name and the parameters'
+// fixed bytes leave of the payload.
+static uint16_t parameter_room(const native_layout *layout)
+{
+    return (uint16_t)(NODE_MAX_PAYLOAD - NATIVE_FIXED_BYTES -
+                      NATIVE_PARAMETER_BYTES * layout->parameter_count - layout->name_length);
+}
+
 static native_layout layout_native(const vm_native *native)
 {
     native_layout layout;
@@ -59,21 +67,13 @@ static native_layout layout_native(const vm_native *native)
     most = (uint16_t)((NODE_MAX_PAYLOAD - NATIVE_FIXED_BYTES - layout.name_length) /
                       NATIVE_PARAMETER_BYTES);
     layout.parameter_count = count < most ? count : most;
-    room = (uint16_t)(NODE_MAX_PAYLOAD - NATIVE_FIXED_BYTES -
-                      NATIVE_PARAMETER_BYTES * layout.parameter_count - layout.name_length);
+    room = parameter_room(&layout);
     for (i = 0; i < layout.parameter_count; i++)
         parameter_name_length(native, i, &room);
     layout.description_length = node_string_length(native->description, room);
     room = (uint16_t)(room - layout.description_length);
     layout.payload_length = (uint16_t)(NODE_MAX_PAYLOAD - room);
     return layout;
-}
-
-// The room parameter names start with, as in layout_native.
-static uint16_t parameter_room(const native_layout *layout)
-{
-    return (uint16_t)(NODE_MAX_PAYLOAD - NATIVE_FIXED_BYTES -
-                      NATIVE_PARAMETER_BYTES * layout->parameter_count - layout->name_length);
 }
 
 static void send_native(node_state *node, const vm_native *native)
@@ -117,11 +117,8 @@ void node_send_description(node_state *node)
     for (i = 0; i < description->variable_count; i++) {
         const node_named_variable *variable = &description->variables[i];
 
-        length = node_string_length(variable->name, NODE_MAX_STRING);
-        node_frame_begin(node, NODE_MSG_NAMED_VARIABLE_DESCRIPTION, (uint16_t)(2 + 1 + length));
-        node_frame_put_u16(node, variable->size);
-        node_frame_put_string(node, variable->name, length);
-        node_frame_end(node);
+        node_send_word_and_string(
+          node, NODE_MSG_NAMED_VARIABLE_DESCRIPTION, variable->size, variable->name);
     }
 
     for (i = 0; i < description->local_event_count; i++) {

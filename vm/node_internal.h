@@ -22,6 +22,10 @@ uint8_t node_string_length(const char *text, uint16_t limit);
 // Sends a frame whose payload is `count` uint16 words.
 void node_send_words(node_state *node, uint16_t type, const uint16_t *words, uint16_t count);
 
+// Sends a frame whose payload is `word` then the string `text`, cut to 255
+// bytes (named variables and node-specific errors).
+void node_send_word_and_string(node_state *node, uint16_t type, uint16_t word, const char *text);
+
 // VARIABLES answers for `length` words from `start`, clamped to the memory
 // and split so that none exceeds NODE_MAX_VARIABLES_WORDS values.
 void node_send_variables(node_state *node, uint16_t start, uint16_t length);

@@ -95,6 +95,16 @@ void node_send_words(node_state *node, uint16_t type, const uint16_t *words, uin
     node_frame_end(node);
 }
 
+void node_send_word_and_string(node_state *node, uint16_t type, uint16_t word, const char *text)
+{
+    uint8_t length = node_string_length(text, NODE_MAX_STRING);
+
+    node_frame_begin(node, type, (uint16_t)(2 + 1 + length));
+    node_frame_put_u16(node, word);
+    node_frame_put_string(node, text, length);
+    node_frame_end(node);
+}
+
 void node_send_variables(node_state *node, uint16_t start, uint16_t length)
 {
     uint16_t size = node->vm.memory.variables_size;
@@ -121,17 +131,10 @@ void node_send_variables(node_state *node, uint16_t start, uint16_t length)
 
 void node_send_user_event(node_state *node, uint16_t event, const int16_t *payload, uint16_t count)
 {
-    uint16_t i;
-
-    // Types from 0x8000 are not user events; and hosts allow 258 words.
-    if (event >= NODE_FIRST_SYSTEM_TYPE)
-        return;
-    if (count > NODE_MAX_PAYLOAD / 2)
-        count = NODE_MAX_PAYLOAD / 2;
-    node_frame_begin(node, event, (uint16_t)(count * 2));
-    for (i = 0; i < count; i++)
-        node_frame_put_u16(node, (uint16_t)payload[i]);
-    node_frame_end(node);
+    // Types from 0x8000 are not user events; node_send_words keeps the 258
+    // words hosts allow. Signed words go on the wire as their bits.
+    if (event < NODE_FIRST_SYSTEM_TYPE)
+        node_send_words(node, event, (const uint16_t *)payload, count);
 }
 
 // --- the VM's reports --------------------------------------------------------
@@ -172,13 +175,7 @@ static void on_division_by_zero(void *context, uint16_t pc)
 
 static void on_node_specific_error(void *context, uint16_t pc, const char *message)
 {
-    node_state *node = (node_state *)context;
-    uint8_t length = node_string_length(message, NODE_MAX_STRING);
-
-    node_frame_begin(node, NODE_MSG_NODE_SPECIFIC_ERROR, (uint16_t)(2 + 1 + length));
-    node_frame_put_u16(node, pc);
-    node_frame_put_string(node, message, length);
-    node_frame_end(node);
+    node_send_word_and_string((node_state *)context, NODE_MSG_NODE_SPECIFIC_ERROR, pc, message);
 }
 
 const vm_callbacks node_vm_callbacks = {
