@@ -20,7 +20,7 @@ vm_goal_instructions=18
 
 echo "bench: building" >&2
 make --no-print-directory BUILD="$build" "$bin/bench-vm" "$bin/bench-vm-goto" \
-    "$bin/bench-compiler" "$bin/bench-node" "$bin/epuck-emu" >&2
+    "$bin/bench-compiler" "$bin/bench-node" "$bin/bench-dsp" "$bin/epuck-emu" >&2
 
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b + 0 == 0) print "-"; else printf "%.2f", a / b }'; }
 divide() { awk -v a="$1" -v b="$2" -v f="$3" 'BEGIN { printf f, a / b }'; }
@@ -35,6 +35,12 @@ trap 'rm -rf "$scratch"' EXIT
 instructions() { # program vm function
     valgrind --tool=callgrind --toggle-collect="$3" --callgrind-out-file="$scratch/out" \
         "$bin/$1" once "$2" 2>"$scratch/log" >/dev/null
+    awk '/Collected :/ { print $NF }' "$scratch/log"
+}
+# Host instructions of one call of a DSP native (bench-dsp WHICH).
+instructions_of_native() { # which function
+    valgrind --tool=callgrind --toggle-collect="$2" --callgrind-out-file="$scratch/out" \
+        "$bin/bench-dsp" "$1" 2>"$scratch/log" >/dev/null
     awk '/Collected :/ { print $NF }' "$scratch/log"
 }
 ir_switch=$(instructions bench-vm ours vm_run)
@@ -81,6 +87,18 @@ echo "bench: compiler" >&2
 compiler=$("$bin/bench-compiler" $compiler_runs)
 compiler_field() { echo "$compiler" | awk -F'\t' -v name="$1" -v f="$2" '$1 == name { print $f }'; }
 
+# --- DSP natives -------------------------------------------------------------
+echo "bench: DSP natives" >&2
+fft_instructions=$(instructions_of_native fft nat_dsp_fft_function)
+fir_instructions=$(instructions_of_native fir nat_dsp_fir_function)
+dsp_avr_code=0
+for source in native_functions/nat_dsp*.c; do
+    avr-gcc -std=gnu99 -Os -mmcu=atmega1284p -ffunction-sections -I. -Ivm -Inative_functions \
+        -c "$source" -o "$scratch/dsp.o"
+    code=$(avr-size -A "$scratch/dsp.o" | awk '$1 ~ /^\.text/ { c += $2 } END { print c + 0 }')
+    dsp_avr_code=$((dsp_avr_code + code))
+done
+
 # --- node and simulator ----------------------------------------------------
 echo "bench: node" >&2
 read -r ours_latency_median ours_latency_mean ours_events < <("$bin/bench-node" emu)
@@ -106,6 +124,9 @@ table=$(
     echo "| compiler: generated 1,000-line script ($(compiler_field generated-1000 4) words), ms, mean of $compiler_runs | $(compiler_field generated-1000 2) | $(compiler_field generated-1000 3) | $(ratio "$(compiler_field generated-1000 2)" "$(compiler_field generated-1000 3)") | |"
     echo "| node: GET_VARIABLES → VARIABLES round trip, loopback TCP, median µs (mean) | $ours_latency_median ($ours_latency_mean) | $ref_latency_median ($ref_latency_mean) | $(ratio "$ours_latency_median" "$ref_latency_median") | |"
     echo "| node: user events per second (ping → pong, 16 in flight) | $ours_events | $ref_events | $(ratio "$ours_events" "$ref_events") | |"
+    echo "| DSP: host instructions for one 64-point dsp.fft (callgrind) | $fft_instructions | - | - | |"
+    echo "| DSP: host instructions for one dsp.fir, 64 samples through 32 taps (callgrind) | $fir_instructions | - | - | |"
+    echo "| DSP natives: code, avr-gcc -Os (16-bit int), bytes, objects alone | $dsp_avr_code | - | - | |"
     echo "| simulator: CPU s per robot-second, 1 robot running the paper annex | $sim_one | - | - | |"
     echo "| simulator: CPU s per robot-second, $simulator_robots_many robots ($sim_many_cpu s CPU in $sim_many_wall s) | $sim_many | - | - | |"
     echo "| simulator: robots one core would keep in real time (extrapolated from the line above; epuck-emu runs at most 1000) | ≈ $robots_per_core | - | - | |"
@@ -153,6 +174,10 @@ cores=$(nproc)
     echo "  talks to it directly (TCP_NODELAY, TCP_QUICKACK): 2,000 GET_VARIABLES of 16"
     echo "  words, then 20,000 user events through a handler \`onevent ping emit pong\`"
     echo "  loaded with SET_BYTECODE, RESET, RUN."
+    echo "- DSP: \`valgrind --tool=callgrind --toggle-collect=nat_dsp_fft_function"
+    echo "  bench-dsp fft\` (and \`fir\` with nat_dsp_fir_function) counts one call on"
+    echo "  fixed data; the code size sums .text of native_functions/nat_dsp*.c built"
+    echo "  alone with avr-gcc -Os."
     echo "- Simulator: \`bench-node simulator N $simulator_seconds\` runs \`epuck-emu"
     echo "  --robots N --load examples/paper-annex.aesl\` for $simulator_seconds s of wall"
     echo "  time and divides the CPU time it used by N × seconds."
