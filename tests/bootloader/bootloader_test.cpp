@@ -1,0 +1,457 @@
+// The serial bootloader's core (bootloader/bootloader.h) on a host board:
+// a test host speaks the Aseba bootloader messages of protocol.md §6.9,
+// flashes an image read from a HEX file, reads it back, resets into it, and
+// loses power at every row operation of a flashing.
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include "tools/flash/hex_image.hpp"
+
+extern "C" {
+#include "bootloader/bootloader.h"
+#include "hal/host/host_board.h"
+}
+
+namespace
+{
+
+constexpr uint16_t node_id = 3;
+constexpr uint16_t host_id = 0;
+// The factory chain (fact sheet §4.3): reset vector = GOTO 0x017F40.
+constexpr uint32_t reset_goto_low = 0x047F40;
+constexpr uint32_t reset_goto_high = 0x000001;
+
+struct Frame {
+    uint16_t source;
+    uint16_t type;
+    std::vector<uint8_t> payload;
+    uint16_t word(std::size_t i) const
+    {
+        return static_cast<uint16_t>(payload[2 * i] | payload[2 * i + 1] << 8);
+    }
+};
+
+// A board running the bootloader, and what it sent.
+struct Robot {
+    std::unique_ptr<hal_board> board = std::make_unique<hal_board>();
+    bootloader loader{};
+    std::vector<uint8_t> sent;
+    uint32_t now_ms = 0;
+
+    Robot()
+    {
+        host_board_init(board.get(), &Robot::collect, this);
+        board->flash[0] = reset_goto_low;
+        board->flash[1] = reset_goto_high;
+    }
+
+    static void collect(void *context, const uint8_t *bytes, uint16_t count)
+    {
+        auto *robot = static_cast<Robot *>(context);
+        robot->sent.insert(robot->sent.end(), bytes, bytes + count);
+    }
+
+    // Power comes back: a new board with the old memories, bootloader started.
+    std::unique_ptr<Robot> reboot() const
+    {
+        auto robot = std::make_unique<Robot>();
+        std::copy(
+          std::begin(board->flash), std::end(board->flash), std::begin(robot->board->flash));
+        std::copy(
+          std::begin(board->eeprom), std::end(board->eeprom), std::begin(robot->board->eeprom));
+        robot->start();
+        return robot;
+    }
+
+    void start()
+    {
+        boot_start(&loader, board.get(), node_id);
+    }
+
+    // Delivers one frame and lets the bootloader handle it.
+    boot_status send(uint16_t type, std::vector<uint8_t> payload)
+    {
+        std::vector<uint8_t> frame{ static_cast<uint8_t>(payload.size()),
+                                    static_cast<uint8_t>(payload.size() >> 8),
+                                    host_id,
+                                    0,
+                                    static_cast<uint8_t>(type),
+                                    static_cast<uint8_t>(type >> 8) };
+        frame.insert(frame.end(), payload.begin(), payload.end());
+        EXPECT_TRUE(
+          host_board_link_deliver(board.get(), frame.data(), static_cast<uint16_t>(frame.size())));
+        return boot_poll(&loader);
+    }
+
+    boot_status advance(uint32_t milliseconds)
+    {
+        now_ms += milliseconds;
+        host_board_set_time(board.get(), now_ms);
+        return boot_poll(&loader);
+    }
+
+    // The frames sent since the last call.
+    std::vector<Frame> take_frames()
+    {
+        std::vector<Frame> frames;
+        std::size_t at = 0;
+        while (sent.size() - at >= 6) {
+            uint16_t length = static_cast<uint16_t>(sent[at] | sent[at + 1] << 8);
+            EXPECT_GE(sent.size() - at, 6u + length);
+            Frame frame{ static_cast<uint16_t>(sent[at + 2] | sent[at + 3] << 8),
+                         static_cast<uint16_t>(sent[at + 4] | sent[at + 5] << 8),
+                         std::vector<uint8_t>(sent.begin() + static_cast<long>(at) + 6,
+                                              sent.begin() + static_cast<long>(at) + 6 + length) };
+            frames.push_back(frame);
+            at += 6 + length;
+        }
+        EXPECT_EQ(at, sent.size());
+        sent.clear();
+        return frames;
+    }
+};
+
+std::vector<uint8_t> words(std::initializer_list<uint16_t> values)
+{
+    std::vector<uint8_t> bytes;
+    for (uint16_t v : values) {
+        bytes.push_back(static_cast<uint8_t>(v));
+        bytes.push_back(static_cast<uint8_t>(v >> 8));
+    }
+    return bytes;
+}
+
+// The only frame sent must be BOOTLOADER_ACK with these payload words.
+void expect_ack(Robot &robot, std::vector<uint16_t> expected)
+{
+    auto frames = robot.take_frames();
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(frames[0].source, node_id);
+    EXPECT_EQ(frames[0].type, 0x8006); // protocol.md §3
+    ASSERT_EQ(frames[0].payload.size(), 2 * expected.size());
+    for (std::size_t i = 0; i < expected.size(); i++)
+        EXPECT_EQ(frames[0].word(i), expected[i]);
+}
+
+std::vector<aseba::flash::Page> pages_of(const std::string &name)
+{
+    std::ifstream file("tests/bootloader/hex/" + name, std::ios::binary);
+    std::ostringstream text;
+    text << file.rdbuf();
+    auto image = aseba::flash::read_microchip_hex(text.str(), BOOT_DESCRIPTOR_ADDRESS);
+    aseba::flash::add_application_descriptor(image);
+    return aseba::flash::make_pages(image);
+}
+
+// Writes one page as upstream's BootloaderInterface does; returns whether
+// both acks said success.
+bool write_page(Robot &robot, const aseba::flash::Page &page)
+{
+    robot.send(0x8002, words({ node_id, page.number }));
+    auto ready = robot.take_frames();
+    if (ready.size() != 1 || ready[0].type != 0x8006 || ready[0].word(0) != 0)
+        return false;
+    for (std::size_t i = 0; i < page.bytes.size(); i += 4) {
+        auto chunk = words({ node_id });
+        chunk.insert(chunk.end(),
+                     page.bytes.begin() + static_cast<long>(i),
+                     page.bytes.begin() + static_cast<long>(i) + 4);
+        robot.send(0x8003, chunk);
+        auto frames = robot.take_frames();
+        bool last = i + 4 == page.bytes.size();
+        if (!last && !frames.empty())
+            return false; // no ack before the page is complete
+        if (last && (frames.size() != 1 || frames[0].type != 0x8006 || frames[0].word(0) != 0))
+            return false;
+    }
+    return true;
+}
+
+bool flash(Robot &robot, const std::vector<aseba::flash::Page> &pages)
+{
+    robot.take_frames(); // the description
+    for (const auto &page : pages) {
+        if (!write_page(robot, page))
+            return false;
+    }
+    return true;
+}
+
+// The page as BOOTLOADER_READ_PAGE returns it.
+std::vector<uint8_t> read_page(Robot &robot, uint16_t page)
+{
+    robot.send(0x8001, words({ node_id, page }));
+    auto frames = robot.take_frames();
+    std::vector<uint8_t> bytes;
+    EXPECT_EQ(frames.size(), 33u);
+    for (std::size_t i = 0; i + 1 < frames.size(); i++) {
+        EXPECT_EQ(frames[i].type, 0x8005);
+        EXPECT_EQ(frames[i].payload.size(), 4u);
+        bytes.insert(bytes.end(), frames[i].payload.begin(), frames[i].payload.end());
+    }
+    EXPECT_EQ(frames.back().type, 0x8006);
+    EXPECT_EQ(frames.back().payload, words({ 0 }));
+    return bytes;
+}
+
+void expect_description(Robot &robot)
+{
+    auto frames = robot.take_frames();
+    ASSERT_EQ(frames.size(), 1u);
+    EXPECT_EQ(frames[0].type, 0x8004);
+    // 128-byte pages (32 instructions x 4 hex bytes), pages 0 .. up to the
+    // bytecode store at PC 0x16F00 = page 0x16F00 / 0x40.
+    EXPECT_EQ(frames[0].payload, words({ 128, 0, 0x16F00 / 0x40 }));
+}
+
+TEST(Bootloader, SendsItsDescriptionAtStart)
+{
+    Robot robot;
+    robot.start();
+    expect_description(robot);
+}
+
+TEST(Bootloader, FlashesReadsBackAndStartsTheApplication)
+{
+    Robot robot;
+    robot.start();
+    robot.take_frames();
+    auto pages = pages_of("good.hex");
+    ASSERT_TRUE(flash(robot, pages));
+    for (const auto &page : pages) {
+        auto bytes = read_page(robot, page.number);
+        std::vector<uint8_t> expected(page.bytes.begin(), page.bytes.end());
+        if (page.number == 0) { // the reset vector stays the bootloader's
+            std::vector<uint8_t> vector{ 0x40, 0x7F, 0x04, 0x00, 0x01, 0x00, 0x00, 0x00 };
+            std::copy(vector.begin(), vector.end(), expected.begin());
+        }
+        EXPECT_EQ(bytes, expected) << "page " << page.number;
+    }
+    uint32_t entry = 0;
+    ASSERT_TRUE(boot_application_valid(robot.board.get(), &entry));
+    EXPECT_EQ(entry, 0x200u); // good.hex: GOTO 0x000200
+    EXPECT_EQ(robot.send(0x8000, words({ node_id })), BOOT_START_APPLICATION);
+    expect_ack(robot, { 0 });
+}
+
+TEST(Bootloader, StartsAValidApplicationAfterTheTimeout)
+{
+    Robot first;
+    first.start();
+    ASSERT_TRUE(flash(first, pages_of("good.hex")));
+    auto robot = first.reboot();
+    EXPECT_EQ(robot->advance(BOOT_WAIT_MS - 1), BOOT_STAY);
+    EXPECT_EQ(robot->advance(1), BOOT_START_APPLICATION);
+}
+
+TEST(Bootloader, StaysWhenAddressedBeforeTheTimeout)
+{
+    Robot first;
+    first.start();
+    ASSERT_TRUE(flash(first, pages_of("good.hex")));
+    auto robot = first.reboot();
+    robot->take_frames();
+    robot->send(0xA00E, words({ node_id })); // REBOOT: a host wants the bootloader
+    expect_description(*robot);
+    EXPECT_EQ(robot->advance(10 * BOOT_WAIT_MS), BOOT_STAY);
+}
+
+TEST(Bootloader, StaysWithoutAValidApplication)
+{
+    Robot robot;
+    robot.start();
+    robot.take_frames();
+    EXPECT_EQ(robot.advance(10 * BOOT_WAIT_MS), BOOT_STAY);
+    EXPECT_EQ(robot.send(0x8000, words({ node_id })), BOOT_STAY);
+    auto frames = robot.take_frames();
+    ASSERT_EQ(frames.size(), 2u); // the ack, then the description again
+    EXPECT_EQ(frames[0].type, 0x8006);
+    EXPECT_EQ(frames[1].type, 0x8004);
+}
+
+TEST(Bootloader, ADamagedApplicationIsNotStarted)
+{
+    Robot robot;
+    robot.start();
+    ASSERT_TRUE(flash(robot, pages_of("good.hex")));
+    robot.board->flash[0x200 / 2] ^= 0x10; // one bit of the code
+    uint32_t entry = 0;
+    EXPECT_FALSE(boot_application_valid(robot.board.get(), &entry));
+    auto rebooted = robot.reboot();
+    EXPECT_EQ(rebooted->advance(2 * BOOT_WAIT_MS), BOOT_STAY);
+}
+
+TEST(Bootloader, RefusesPagesOutsideTheApplication)
+{
+    Robot robot;
+    robot.start();
+    robot.take_frames();
+    auto before =
+      std::vector<uint32_t>(std::begin(robot.board->flash), std::end(robot.board->flash));
+    // The bytecode store's first page, the factory bootloader's, beyond flash.
+    for (uint16_t page : { uint16_t(0x16F00 / 0x40), uint16_t(0x17F00 / 0x40), uint16_t(0xFFFF) }) {
+        robot.send(0x8002, words({ node_id, page }));
+        expect_ack(robot, { 2, static_cast<uint16_t>(page * 0x40u) });
+        robot.send(0x8003, words({ node_id, 0x1111, 0x0011 }));
+        expect_ack(robot, { 3 }); // not programming
+        robot.send(0x8001, words({ node_id, page }));
+        expect_ack(robot, { 2, static_cast<uint16_t>(page * 0x40u) });
+    }
+    EXPECT_TRUE(std::equal(before.begin(), before.end(), std::begin(robot.board->flash)));
+}
+
+TEST(Bootloader, AnswersBadFramesWithTheProtocolCodes)
+{
+    Robot robot;
+    robot.start();
+    robot.take_frames();
+    robot.send(0x8003, words({ node_id, 1, 2 }));
+    expect_ack(robot, { 3 }); // data without WRITE_PAGE
+    robot.send(0x8002, words({ node_id, 5, 0 }));
+    expect_ack(robot, { 1 }); // WRITE_PAGE with an extra word
+    robot.send(0x8002, words({ node_id, 5 }));
+    expect_ack(robot, { 0 });
+    robot.send(0x8003, words({ node_id, 1 }));
+    expect_ack(robot, { 1 }); // a 2-byte chunk
+    robot.send(0x8003, words({ node_id, 1, 2 }));
+    expect_ack(robot, { 3 }); // the bad chunk ended programming
+    robot.send(0x8001, words({ node_id }));
+    expect_ack(robot, { 1 }); // READ_PAGE without a page
+}
+
+TEST(Bootloader, IgnoresFramesForOtherNodesAndOtherMessages)
+{
+    Robot robot;
+    robot.start();
+    robot.take_frames();
+    robot.send(0x8002, words({ node_id + 1, 5 }));
+    robot.send(0xA000, words({ 5 }));                    // GET_DESCRIPTION broadcast
+    robot.send(0x0001, std::vector<uint8_t>(500, 0x80)); // a long user event
+    robot.send(0x8002, {});                              // no dest
+    EXPECT_TRUE(robot.take_frames().empty());
+    // Still in sync: the next frame is understood.
+    robot.send(0x8002, words({ node_id, 5 }));
+    expect_ack(robot, { 0 });
+}
+
+TEST(Bootloader, DropsAFrameCutShortByASilence)
+{
+    Robot robot;
+    robot.start();
+    robot.take_frames();
+    uint8_t partial[] = { 4, 0, 0, 0, 0x02 };
+    ASSERT_TRUE(host_board_link_deliver(robot.board.get(), partial, sizeof partial));
+    boot_poll(&robot.loader);
+    robot.advance(BOOT_FRAME_GAP_MS + 1);
+    robot.send(0x8002, words({ node_id, 5 }));
+    expect_ack(robot, { 0 });
+}
+
+// Counts the flash operations of flashing `pages` over a valid application.
+uint32_t operations_of_flashing(const Robot &start, const std::vector<aseba::flash::Page> &pages)
+{
+    auto robot = start.reboot();
+    uint32_t before = robot->board->memory_operations;
+    EXPECT_TRUE(flash(*robot, pages));
+    return robot->board->memory_operations - before;
+}
+
+// How many pages differ from what the robot's flash holds (row 0 without
+// its reset vector, which the bootloader keeps).
+std::size_t changed_pages(const Robot &robot, const std::vector<aseba::flash::Page> &pages)
+{
+    std::size_t changed = 0;
+    for (const auto &page : pages) {
+        for (std::size_t i = page.number == 0 ? 2 : 0; i < 32; i++) {
+            uint32_t wanted =
+              page.bytes[4 * i] | page.bytes[4 * i + 1] << 8 | page.bytes[4 * i + 2] << 16;
+            if (robot.board->flash[page.number * 0x20 + i] != wanted) {
+                changed++;
+                break;
+            }
+        }
+    }
+    return changed;
+}
+
+TEST(Bootloader, ReflashingTheSameImageRewritesOnlyTheDescriptor)
+{
+    Robot first;
+    first.start();
+    auto pages = pages_of("good.hex");
+    ASSERT_TRUE(flash(first, pages));
+    auto robot = first.reboot();
+    uint32_t before = robot->board->memory_operations;
+    ASSERT_TRUE(flash(*robot, pages));
+    // Only the descriptor: erased when the first page comes, then its own
+    // page's erase and write.
+    EXPECT_EQ(robot->board->memory_operations - before, 3u);
+    uint32_t entry = 0;
+    EXPECT_TRUE(boot_application_valid(robot->board.get(), &entry));
+}
+
+TEST(Bootloader, APowerCutAtAnyRowOperationLeavesTheBootloaderInCharge)
+{
+    // An old application (good.hex moved to another entry) is on the robot.
+    auto old_pages = pages_of("good.hex");
+    Robot start;
+    start.start();
+    {
+        auto image = aseba::flash::read_microchip_hex(
+          ":020000040000FA\n:080000000003040000000000F1\n:04060000AABBCC00C5\n:00000001FF\n",
+          BOOT_DESCRIPTOR_ADDRESS);
+        aseba::flash::add_application_descriptor(image);
+        ASSERT_TRUE(flash(start, aseba::flash::make_pages(image)));
+    }
+    uint32_t old_entry = 0;
+    ASSERT_TRUE(boot_application_valid(start.board.get(), &old_entry));
+    ASSERT_EQ(old_entry, 0x300u);
+
+    uint32_t operations = operations_of_flashing(start, old_pages);
+    // The descriptor's erase, then an erase and a write per page that
+    // changes (row 0 does: its vectors differ).
+    EXPECT_EQ(operations, 1 + 2 * changed_pages(start, old_pages));
+    const uint32_t row_0_erase = 2;
+    for (uint32_t cut = 1; cut <= operations; cut++) {
+        auto robot = start.reboot();
+        host_board_cut_power_at(robot->board.get(), cut);
+        flash(*robot, old_pages);
+        robot->board->powered_off = false;
+        auto rebooted = robot->reboot();
+        uint32_t entry = 0;
+        bool valid = boot_application_valid(rebooted->board.get(), &entry);
+        boot_status status = rebooted->advance(2 * BOOT_WAIT_MS);
+        if (cut < operations) {
+            EXPECT_FALSE(valid) << "cut at " << cut;
+            EXPECT_EQ(status, BOOT_STAY) << "cut at " << cut;
+        } else if (valid) { // the cut tore the descriptor's row after its first words
+            EXPECT_EQ(entry, 0x200u);
+        }
+        // The reset vector leads to the bootloader after every cut but one:
+        // a cut during the erase of row 0 (operation 2: after the
+        // descriptor's erase) loses it. This chip has no way around that
+        // window (the factory Tiny Bootloader has it too); see
+        // bootloader/README.md for the remapped-vector fix.
+        if (cut == row_0_erase) {
+            EXPECT_EQ(rebooted->board->flash[0], HAL_FLASH_ERASED);
+        } else {
+            EXPECT_EQ(rebooted->board->flash[0], reset_goto_low) << "cut at " << cut;
+            EXPECT_EQ(rebooted->board->flash[1], reset_goto_high) << "cut at " << cut;
+        }
+        // Flashing again after the reboot succeeds.
+        auto again = robot->reboot();
+        again->take_frames();
+        ASSERT_TRUE(flash(*again, old_pages)) << "cut at " << cut;
+        EXPECT_EQ(again->send(0x8000, words({ node_id })), BOOT_START_APPLICATION);
+        ASSERT_TRUE(boot_application_valid(again->board.get(), &entry));
+        EXPECT_EQ(entry, 0x200u);
+    }
+}
+
+} // namespace

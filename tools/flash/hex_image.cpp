@@ -1,0 +1,228 @@
+// Reads Microchip Intel HEX files and cuts them into bootloader pages.
+
+#include "tools/flash/hex_image.hpp"
+
+#include <iterator>
+#include <sstream>
+#include <string>
+
+extern "C" {
+#include "bootloader/boot_application.h"
+#include "vm/node.h"
+}
+
+namespace aseba::flash
+{
+namespace
+{
+
+constexpr uint8_t record_data = 0x00;
+constexpr uint8_t record_end_of_file = 0x01;
+constexpr uint8_t record_extended_linear_address = 0x04;
+constexpr std::size_t record_overhead = 5; // count, address (2), type, checksum
+constexpr uint32_t bytes_per_instruction = 4;
+constexpr uint32_t hex_bytes_per_pc_unit = 2;
+constexpr uint32_t eeprom_hex_start = 0xFFE000;
+constexpr uint32_t eeprom_hex_end = 0x1000000;
+constexpr uint32_t config_hex_start = 0x1F00000;
+constexpr uint32_t config_hex_end = 0x1F00020; // 8 words, 4 bytes each
+constexpr uint32_t pc_units_per_instruction = 2;
+
+std::string hex_number(uint32_t value)
+{
+    std::ostringstream out;
+    out << "0x" << std::hex << std::uppercase << value;
+    return out.str();
+}
+
+[[noreturn]] void fail(std::size_t line, const std::string &message)
+{
+    throw HexError("line " + std::to_string(line) + ": " + message);
+}
+
+int digit_value(char c)
+{
+    if (c >= '0' && c <= '9')
+        return c - '0';
+    if (c >= 'A' && c <= 'F')
+        return c - 'A' + 10;
+    if (c >= 'a' && c <= 'f')
+        return c - 'a' + 10;
+    return -1;
+}
+
+// The bytes of one record line (without the colon), checked for syntax,
+// length and checksum.
+std::vector<uint8_t> record_bytes(std::string_view line, std::size_t number)
+{
+    if (line.empty() || line[0] != ':')
+        fail(number, "a record must start with ':'");
+    line.remove_prefix(1);
+    if (line.size() % 2 != 0)
+        fail(number, "odd number of hex digits");
+    std::vector<uint8_t> bytes;
+    for (std::size_t i = 0; i < line.size(); i += 2) {
+        int high = digit_value(line[i]);
+        int low = digit_value(line[i + 1]);
+        if (high < 0 || low < 0)
+            fail(number, "not a hex digit");
+        bytes.push_back(static_cast<uint8_t>(high * 16 + low));
+    }
+    if (bytes.size() < record_overhead || bytes.size() != record_overhead + bytes[0])
+        fail(number, "the byte count does not match the record's length");
+    uint8_t sum = 0;
+    for (uint8_t byte : bytes)
+        sum = static_cast<uint8_t>(sum + byte);
+    if (sum != 0)
+        fail(number, "bad checksum");
+    return bytes;
+}
+
+void add_data(ProgramImage &image,
+              uint32_t hex_address,
+              const uint8_t *data,
+              std::size_t count,
+              uint32_t application_end,
+              std::size_t number)
+{
+    uint32_t hex_end = hex_address + static_cast<uint32_t>(count);
+    if (hex_address >= eeprom_hex_start && hex_end <= eeprom_hex_end) {
+        image.skipped_bytes += count;
+        return;
+    }
+    if (hex_address >= config_hex_start && hex_end <= config_hex_end) {
+        image.skipped_bytes += count;
+        return;
+    }
+    if (hex_address % bytes_per_instruction != 0 || count % bytes_per_instruction != 0)
+        fail(number,
+             "program data must be whole 4-byte instructions (address " + hex_number(hex_address) +
+               ", " + std::to_string(count) + " bytes)");
+    for (std::size_t i = 0; i < count; i += bytes_per_instruction) {
+        uint32_t pc = (hex_address + static_cast<uint32_t>(i)) / hex_bytes_per_pc_unit;
+        if (pc >= application_end)
+            fail(number,
+                 "PC address " + hex_number(pc) + " is outside the application region [0, " +
+                   hex_number(application_end) + ")");
+        if (data[i + 3] != 0)
+            fail(number, "non-zero phantom byte at PC address " + hex_number(pc));
+        image.instructions[pc] =
+          static_cast<uint32_t>(data[i] | (data[i + 1] << 8) | (data[i + 2] << 16));
+    }
+}
+
+} // namespace
+
+ProgramImage read_microchip_hex(std::string_view text, uint32_t application_end)
+{
+    ProgramImage image;
+    uint32_t upper_address = 0;
+    bool ended = false;
+    std::size_t number = 0;
+
+    while (!text.empty()) {
+        std::size_t newline = text.find('\n');
+        std::string_view line = text.substr(0, newline);
+        text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
+        number++;
+        if (!line.empty() && line.back() == '\r')
+            line.remove_suffix(1);
+        if (line.empty())
+            continue;
+        if (ended)
+            fail(number, "record after the end-of-file record");
+        std::vector<uint8_t> bytes = record_bytes(line, number);
+        uint8_t count = bytes[0];
+        uint32_t offset = static_cast<uint32_t>(bytes[1] << 8 | bytes[2]);
+        const uint8_t *data = bytes.data() + 4;
+        switch (bytes[3]) {
+        case record_data:
+            add_data(image, upper_address << 16 | offset, data, count, application_end, number);
+            break;
+        case record_end_of_file:
+            if (count != 0)
+                fail(number, "end-of-file record with data");
+            ended = true;
+            break;
+        case record_extended_linear_address:
+            if (count != 2)
+                fail(number, "extended linear address record must hold 2 bytes");
+            upper_address = static_cast<uint32_t>(data[0] << 8 | data[1]);
+            break;
+        default:
+            fail(number,
+                 "unsupported record type " + std::to_string(bytes[3]) +
+                   " (Microchip files use 00, 01 and 04)");
+        }
+    }
+    if (!ended)
+        throw HexError("no end-of-file record: the file is truncated");
+    return image;
+}
+
+void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> entry)
+{
+    auto instruction_at = [&](uint32_t pc) {
+        auto found = image.instructions.find(pc);
+        return found == image.instructions.end() ? erased_instruction : found->second;
+    };
+    if (!entry.has_value()) {
+        uint32_t goto_low = instruction_at(0);
+        if (goto_low >> 16 != BOOT_GOTO_OPCODE)
+            throw HexError("PC 0 holds no GOTO: the image has no reset vector");
+        entry = (goto_low & 0xFFFF) | (instruction_at(2) & BOOT_GOTO_HIGH_MASK) << 16;
+    }
+    auto code_end = image.instructions.lower_bound(BOOT_DESCRIPTOR_ADDRESS);
+    if (code_end == image.instructions.begin())
+        throw HexError("the image holds no application code");
+    uint32_t end = std::prev(code_end)->first + pc_units_per_instruction;
+    if (code_end != image.instructions.end() && code_end->first < BOOT_APPLICATION_END)
+        throw HexError("the code reaches the descriptor row at " +
+                       hex_number(BOOT_DESCRIPTOR_ADDRESS));
+    uint16_t crc = 0;
+    for (uint32_t pc = BOOT_CHECKED_START; pc < end; pc += pc_units_per_instruction) {
+        uint32_t value = instruction_at(pc);
+        uint8_t bytes[3] = { static_cast<uint8_t>(value),
+                             static_cast<uint8_t>(value >> 8),
+                             static_cast<uint8_t>(value >> 16) };
+        crc = node_crc16(crc, bytes, 3);
+    }
+    uint32_t base = BOOT_DESCRIPTOR_ADDRESS;
+    image.instructions[base + BOOT_DESCRIPTOR_MAGIC_INDEX * 2] = BOOT_DESCRIPTOR_MAGIC;
+    image.instructions[base + BOOT_DESCRIPTOR_ENTRY_INDEX * 2] = *entry;
+    image.instructions[base + BOOT_DESCRIPTOR_END_INDEX * 2] = end;
+    image.instructions[base + BOOT_DESCRIPTOR_CRC_INDEX * 2] = crc;
+}
+
+std::vector<Page> make_pages(const ProgramImage &image)
+{
+    std::vector<Page> pages;
+    if (image.instructions.empty())
+        return pages;
+    // Every page up to the end of the code, so that no old row stays inside
+    // the CRC's range; above it (the descriptor), only the pages with data.
+    auto code_end = image.instructions.lower_bound(BOOT_DESCRIPTOR_ADDRESS);
+    uint32_t last_code_page =
+      code_end == image.instructions.begin() ? 0 : std::prev(code_end)->first / page_span;
+    std::vector<uint32_t> numbers;
+    for (uint32_t number = 0; number <= last_code_page; number++)
+        numbers.push_back(number);
+    for (auto it = code_end; it != image.instructions.end(); ++it) {
+        if (it->first / page_span != numbers.back())
+            numbers.push_back(it->first / page_span);
+    }
+    for (uint32_t number : numbers) {
+        Page page{ static_cast<uint16_t>(number), {} };
+        for (uint32_t i = 0; i < page_bytes / bytes_per_instruction; i++) {
+            auto found = image.instructions.find(number * page_span + i * pc_units_per_instruction);
+            uint32_t value = found == image.instructions.end() ? erased_instruction : found->second;
+            for (uint32_t b = 0; b < 3; b++)
+                page.bytes[i * bytes_per_instruction + b] = static_cast<uint8_t>(value >> (8 * b));
+            page.bytes[i * bytes_per_instruction + 3] = 0;
+        }
+        pages.push_back(page);
+    }
+    return pages;
+}
+
+} // namespace aseba::flash
