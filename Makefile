@@ -100,7 +100,7 @@ deps:
 
 # The portable layers must build warning-free where `int` is 16 bits (the
 # dsPIC's case, here avr-gcc) and on a 32-bit microcontroller.
-PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c)
+PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c bootloader/*.c)
 cross-check: | $(DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
 

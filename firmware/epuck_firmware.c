@@ -8,6 +8,7 @@
 
 #include "drivers/epuck/epuck_battery.h"
 #include "drivers/epuck/epuck_selector.h"
+#include "bootloader/bytecode_store.h"
 #include "epuck_natives.h"
 
 static const node_named_variable epuck_variables[] = {
@@ -30,9 +31,9 @@ static const node_local_event epuck_local_events[] = {
 };
 
 const node_description epuck_description = {
-    EPUCK_NAME,         NODE_PROTOCOL_VERSION,
-    epuck_variables,    sizeof(epuck_variables) / sizeof(epuck_variables[0]),
-    epuck_local_events, EPUCK_LOCAL_EVENT_COUNT,
+    EPUCK_NAME,          NODE_PROTOCOL_VERSION,
+    epuck_variables,     sizeof(epuck_variables) / sizeof(epuck_variables[0]),
+    epuck_local_events,  EPUCK_LOCAL_EVENT_COUNT,
     &epuck_native_table,
 };
 
@@ -43,6 +44,38 @@ static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bo
 
     (void)frame_complete;
     hal_link_send(firmware->board, bytes, count);
+}
+
+// WRITE_BYTECODE: the program runs at the next boot. A failed save is
+// reported as an error, which stops the VM like any other.
+static void store_bytecode(void *context, const uint16_t *bytecode, uint16_t size)
+{
+    epuck_firmware *firmware = context;
+
+    if (!epuck_store_save_bytecode(firmware->board, bytecode, size))
+        vm_error_node_specific(&firmware->node.vm, "could not store the bytecode");
+}
+
+// REBOOT: restart the chip (into the bootloader, which then boots the
+// application unless a host talks to it).
+static void reboot(void *context)
+{
+    epuck_firmware *firmware = context;
+
+    hal_reset(firmware->board);
+}
+
+// A stored program starts at boot, running at once (bytecode.md §6.5), its
+// `when` conditions cleared since the saved copy may hold was-true bits.
+static void start_stored_program(epuck_firmware *firmware)
+{
+    uint16_t count;
+
+    if (!epuck_store_load_bytecode(
+          firmware->board, firmware->bytecode, EPUCK_BYTECODE_WORDS, &count))
+        return;
+    vm_reset(&firmware->node.vm);
+    vm_command_run(&firmware->node.vm);
 }
 
 // Starts every driver: actuators off, the analog scan (whose first second
@@ -69,6 +102,7 @@ void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t no
 {
     vm_memory memory;
     node_transport transport;
+    node_hooks hooks;
 
     firmware->board = board;
     if (node_id == 0)
@@ -83,12 +117,17 @@ void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t no
     memory.args_size = sizeof(firmware->variables.named.args) / sizeof(int16_t);
     transport.send = send_to_link;
     transport.context = firmware;
-    node_init(&firmware->node, node_id, &epuck_description, &memory, &transport, 0);
+    hooks.write_bytecode = store_bytecode;
+    hooks.reboot = reboot;
+    hooks.suspend_to_ram = 0;
+    hooks.context = firmware;
+    node_init(&firmware->node, node_id, &epuck_description, &memory, &transport, &hooks);
     firmware->variables.named.cam_line[0] = EPUCK_CAMERA_DEFAULT_LINE;
     firmware->link_start = 0;
     firmware->link_count = 0;
     firmware->timer_period_ms = 0;
     firmware->next_timer_ms = 0;
+    start_stored_program(firmware);
 }
 
 // Speeds and LEDs from the variables to the motors and LEDs; the speeds are

@@ -19,6 +19,7 @@ layer_of() {
     vm/*) echo "vm" ;;
     native_functions/nat_dsp*) echo "dsp natives" ;;
     drivers/*) echo "drivers" ;;
+    bootloader/*) echo "storage, bootloader" ;;
     native_functions/*) echo "natives" ;;
     *) echo "other" ;;
     esac

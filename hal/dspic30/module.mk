@@ -16,7 +16,7 @@ XC16_BIN2HEX := $(XC16_DIR)/xc16-bin2hex
 
 DSPIC30_OUT := $(BUILD)/dspic30
 DSPIC30_SOURCES := $(sort $(wildcard vm/*.c native_functions/*.c firmware/*.c hal/dspic30/*.c \
-                                     drivers/epuck/*.c))
+                                     drivers/epuck/*.c) bootloader/bytecode_store.c)
 DSPIC30_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_SOURCES))
 DSPIC30_LINKER_SCRIPT := linker/epuck-app.gld
 # -mcpu names the part; -omf=elf the object format bin2hex reads; the

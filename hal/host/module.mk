@@ -8,5 +8,5 @@ aseba_host_board_SOURCES := hal/host/host_board.c hal/host/host_peripherals.c \
 # epuck-emu: the e-puck firmware image running on a PC.
 PROGRAMS += epuck-emu
 epuck-emu_SOURCES := hal/host/epuck_emu.cpp
-epuck-emu_LIBS := aseba_epuck_firmware aseba_epuck_drivers aseba_host_board aseba_compiler aseba_node aseba_vm \
+epuck-emu_LIBS := aseba_epuck_firmware aseba_bootloader aseba_epuck_drivers aseba_host_board aseba_compiler aseba_node aseba_vm \
                   aseba_natives

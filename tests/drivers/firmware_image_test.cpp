@@ -135,3 +135,39 @@ TEST_F(FirmwareImage, EventsComeAtTheirRates)
 
 } // namespace
 } // namespace drivers_test
+
+namespace drivers_test
+{
+namespace
+{
+
+// WRITE_BYTECODE (protocol.md §6.8) stores the running program; after a
+// reboot it runs at once, without any host (bytecode.md §6.5).
+TEST_F(FirmwareImage, StoredProgramRunsAfterReboot)
+{
+    // WRITE_BYTECODE to node 6: len 2, source 0, type 0xA00D, dest 6.
+    const uint8_t write_bytecode[] = { 0x02, 0x00, 0x00, 0x00, 0x0d, 0xa0, 0x06, 0x00 };
+    ASSERT_TRUE(host_board_link_deliver(board.get(), write_bytecode, sizeof write_bytecode));
+    run_seconds(0.05);
+
+    // Reboot: a fresh firmware on the same board, whose memories persist.
+    firmware = std::make_unique<epuck_firmware>();
+    epuck_firmware_init(firmware.get(), board.get(), 0);
+    EXPECT_EQ(variable(timer_ticks_address), 0);
+    run_seconds(1.0);
+    EXPECT_NEAR(double(variable(timer_ticks_address)), 100.0, 2.0); // timer.period 10 ms
+}
+
+// Without a stored program the robot boots idle.
+TEST(FirmwareBoot, NothingStoredNothingRuns)
+{
+    auto board = std::make_unique<hal_board>();
+    auto firmware = std::make_unique<epuck_firmware>();
+    host_board_init(board.get(), nullptr, nullptr);
+    epuck_firmware_init(firmware.get(), board.get(), 1);
+    EXPECT_FALSE(vm_is_event_active(&firmware->node.vm));
+    EXPECT_EQ(vm_event_address(&firmware->node.vm, 0xFFFF), 0);
+}
+
+} // namespace
+} // namespace drivers_test

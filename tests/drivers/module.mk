@@ -12,6 +12,6 @@ drivers_test_LDLIBS := -lgtest -lgtest_main -pthread
 TESTS += firmware_image_test
 firmware_image_test_SOURCES := tests/drivers/modelled_world.cpp \
                                tests/drivers/firmware_image_test.cpp
-firmware_image_test_LIBS := aseba_epuck_firmware aseba_epuck_drivers aseba_host_board \
+firmware_image_test_LIBS := aseba_epuck_firmware aseba_bootloader aseba_epuck_drivers aseba_host_board \
                             aseba_compiler aseba_node aseba_vm aseba_natives
 firmware_image_test_LDLIBS := -lgtest -lgtest_main -pthread

@@ -13,7 +13,7 @@ EXTRA_CFLAGS_hal/dspic30/dspic30_main += -Dmain=dspic30_main
 TESTS += hal_dspic30_test
 hal_dspic30_test_SOURCES := tests/hal/dspic30_test.cpp tests/hal/simulated_chip.cpp \
                             $(HAL_DSPIC30_SOURCES)
-hal_dspic30_test_LIBS := aseba_epuck_firmware aseba_epuck_drivers aseba_node aseba_vm aseba_natives
+hal_dspic30_test_LIBS := aseba_epuck_firmware aseba_bootloader aseba_epuck_drivers aseba_node aseba_vm aseba_natives
 hal_dspic30_test_LDLIBS := $(HAL_TEST_GTEST_LDLIBS)
 
 TESTS += hal_host_test
