@@ -104,6 +104,11 @@ PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c boo
 cross-check: | $(DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
 
+# The sources of a library or program, for scripts that build it another way
+# (fuzzing with clang): `make -s sources-aseba_natives`.
+sources-%:
+	@echo $($*_SOURCES)
+
 # Every libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan.
 FUZZ_SECONDS ?= 60
 fuzz: | $(DEPS_STAMP)

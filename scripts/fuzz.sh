@@ -9,27 +9,19 @@ seconds=$1
 build=$2
 shift 2
 
-# The compiler library with what its target presets need (the standard
-# natives' C table), and the client library on top of it.
-natives_sources="vm/vm.c vm/vm_debug.c native_functions/nat_arguments.c native_functions/nat_math.c
-                 native_functions/nat_trigonometry.c native_functions/nat_deque.c
-                 native_functions/nat_standard.c"
-# (target_json.cpp is left out: nothing here uses it, and clang rejects it.)
-compiler_sources=$natives_sources
-for source in tools/compiler/*.cpp; do
-    [ "$source" = tools/compiler/target_json.cpp ] || compiler_sources+=" $source"
-done
-client_sources="$compiler_sources $(echo tools/client/*.cpp)"
+# The project's libraries, as the Makefile lists them.
+library() { make -s --no-print-directory "sources-$1"; }
+vm_sources=$(library aseba_vm)
+natives_sources="$vm_sources $(library aseba_natives)"
+compiler_sources="$natives_sources $(library aseba_compiler)"
+client_sources="$compiler_sources $(library aseba_client)"
 
 # TARGET: its sources (C files are the portable layers under test, compiled
 # for coverage; C++ files the harness), extra link flags and input size limit.
 declare -A sources=(
-    [vm]="vm/vm.c vm/vm_debug.c tests/fuzz/vm_fuzzer.cpp tests/vm/fuzz_driver.cpp
+    [vm]="$vm_sources tests/fuzz/vm_fuzzer.cpp tests/vm/fuzz_driver.cpp
           tests/support/vm_harness.cpp"
-    [node]="vm/vm.c vm/vm_debug.c vm/node.c vm/node_send.c vm/node_description.c
-            native_functions/nat_arguments.c native_functions/nat_math.c
-            native_functions/nat_trigonometry.c native_functions/nat_deque.c
-            native_functions/nat_standard.c tests/fuzz/node_fuzzer.cpp
+    [node]="$natives_sources $(library aseba_node) tests/fuzz/node_fuzzer.cpp
             tests/node/node_harness.cpp tests/node/reference_decoder.cpp"
     [compiler]="$compiler_sources tests/fuzz/compiler_fuzzer.cpp"
     [client]="$client_sources tests/fuzz/client_fuzzer.cpp"
