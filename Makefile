@@ -99,8 +99,10 @@ deps:
 	@scripts/install-deps.sh
 
 # The portable layers must build warning-free where `int` is 16 bits (the
-# dsPIC's case, here avr-gcc) and on a 32-bit microcontroller.
-PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c bootloader/*.c)
+# dsPIC's case, here avr-gcc) and on a 32-bit microcontroller. *_dspic30.c
+# files use XC16's DSP builtins: only the dsPIC30F build compiles them.
+PORTABLE_SOURCES := $(filter-out %_dspic30.c,$(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c \
+                                                        bootloader/*.c))
 cross-check: | $(DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
 

@@ -5,4 +5,5 @@ aseba_natives_SOURCES := native_functions/nat_arguments.c native_functions/nat_m
                          native_functions/nat_trigonometry.c native_functions/nat_deque.c \
                          native_functions/nat_standard.c
 aseba_natives_SOURCES += native_functions/nat_dsp.c native_functions/nat_dsp_fft.c \
-                         native_functions/nat_dsp_filter.c native_functions/nat_dsp_correlation.c
+                         native_functions/nat_dsp_filter.c native_functions/nat_dsp_correlation.c \
+                         native_functions/nat_dsp_kernel.c

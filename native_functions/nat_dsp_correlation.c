@@ -2,8 +2,9 @@
 // and the search for their maximum (the delay between two microphones is
 // the lag at which their correlation peaks).
 //
-// Sums are exact in 64 bits, shifted right by the script's `shift` (rounded
-// half up) and saturated to int16. dest must not overlap a or b: the sums
+// Sums are exact (nat_dsp_scaled_dot_product: 64 bits, or the dsPIC's DSP
+// engine), shifted right by the script's `shift` (rounded half up) and
+// saturated to int16. dest must not overlap a or b: the sums
 // read them after dest is partly written (memory stays safe either way).
 
 #include <stddef.h>
@@ -51,25 +52,6 @@ static bool fetch_lagged_signals(vm_state *vm, const int16_t *arguments, lagged_
     return true;
 }
 
-// The sum of a[i] * b[i] for i = 0 ... count - 1 (correlation).
-static int64_t sum_of_products(const int16_t *a, const int16_t *b, int32_t count)
-{
-    int64_t sum = 0;
-    for (int32_t i = 0; i < count; ++i)
-        sum += (int32_t)a[i] * b[i];
-    return sum;
-}
-
-// The sum of a[i] * b_last[-i] for i = 0 ... count - 1 (convolution: b is
-// read backwards from b_last).
-static int64_t sum_of_reversed_products(const int16_t *a, const int16_t *b_last, int32_t count)
-{
-    int64_t sum = 0;
-    for (int32_t i = 0; i < count; ++i)
-        sum += (int32_t)a[i] * b_last[-i];
-    return sum;
-}
-
 // dest[i] = sum over n of a[n + lag] * b[n], lag = i - dest_size / 2 (integer
 // division): lag 0 in the middle, so a dest of 2N-1 holds lags -(N-1)...N-1.
 // Terms outside either array are zero. A peak at lag L > 0 means that a
@@ -84,9 +66,11 @@ void nat_dsp_corr_function(vm_state *vm, const int16_t *arguments)
         // n runs over max(0, -lag) ... min(b_size, a_size - lag) - 1.
         int32_t first = lag < 0 ? -lag : 0;
         int32_t end = (int32_t)s.a_size - lag < s.b_size ? (int32_t)s.a_size - lag : s.b_size;
-        int64_t sum =
-          end > first ? sum_of_products(s.a + first + lag, s.b + first, end - first) : 0;
-        s.dest[i] = nat_dsp_saturate(nat_dsp_round_shift(sum, s.shift));
+        uint16_t count = end > first ? (uint16_t)(end - first) : 0;
+        // No pointer is formed outside the arrays when no term overlaps.
+        s.dest[i] =
+          count > 0 ? nat_dsp_scaled_dot_product(s.a + first + lag, s.b + first, 1, count, s.shift)
+                    : 0;
     }
 }
 
@@ -102,10 +86,11 @@ void nat_dsp_conv_function(vm_state *vm, const int16_t *arguments)
         // k runs over max(0, i - b_size + 1) ... min(i, a_size - 1).
         int32_t first = (int32_t)i - s.b_size + 1 > 0 ? (int32_t)i - s.b_size + 1 : 0;
         int32_t last = (int32_t)i < (int32_t)s.a_size - 1 ? (int32_t)i : (int32_t)s.a_size - 1;
-        int64_t sum = last >= first
-                        ? sum_of_reversed_products(s.a + first, s.b + (i - first), last - first + 1)
-                        : 0;
-        s.dest[i] = nat_dsp_saturate(nat_dsp_round_shift(sum, s.shift));
+        // b is read backwards from b[i - first].
+        uint16_t count = last >= first ? (uint16_t)(last - first + 1) : 0;
+        s.dest[i] =
+          count > 0 ? nat_dsp_scaled_dot_product(s.a + first, s.b + (i - first), -1, count, s.shift)
+                    : 0;
     }
 }
 

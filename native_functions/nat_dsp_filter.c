@@ -1,6 +1,7 @@
 // dsp.fir and dsp.iir: filters over an int16 signal.
 //
-// Both sum their products exactly in 64 bits, then round half up once and
+// Both sum their products exactly (dsp.fir with nat_dsp_scaled_dot_product,
+// the loop the dsPIC runs on its DSP engine), then round half up once and
 // saturate to int16: the result is the exact filter output, rounded, for
 // any number of taps, and clips instead of wrapping at the extremes.
 
@@ -38,10 +39,9 @@ void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments)
     // none of which is overwritten yet.
     for (uint16_t n = length; n-- > 0;) {
         uint16_t taps = n < tap_count ? (uint16_t)(n + 1) : tap_count;
-        int64_t sum = 0;
-        for (uint16_t k = 0; k < taps; ++k)
-            sum += (int32_t)coefficients[k] * src[n - k];
-        dest[n] = nat_dsp_saturate(nat_dsp_round_shift(sum, FIR_COEFFICIENT_SHIFT));
+        // sum of coefficients[k] * src[n - k]: src read backwards from src[n].
+        dest[n] =
+          nat_dsp_scaled_dot_product(coefficients, src + n, -1, taps, FIR_COEFFICIENT_SHIFT);
     }
 }
 

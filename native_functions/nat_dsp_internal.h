@@ -51,6 +51,18 @@ static inline int16_t nat_dsp_saturate32(int32_t value)
     return (int16_t)value;
 }
 
+// The inner loop of dsp.fir, dsp.corr and dsp.conv:
+//   sum of a[i] * b[i * b_step] for i = 0 ... count - 1, b_step = 1 or -1,
+// exact, then divided by 2^shift rounded half up (nat_dsp_round_shift,
+// 0 <= shift <= NAT_DSP_MAX_SHIFT) and saturated to int16. Returns 0 when
+// count is 0. nat_dsp_kernel.c is the portable version; the dsPIC30F build
+// compiles nat_dsp_dspic30.c, its DSP-engine version, instead.
+int16_t nat_dsp_scaled_dot_product(const int16_t *a,
+                                   const int16_t *b,
+                                   int16_t b_step,
+                                   uint16_t count,
+                                   uint16_t shift);
+
 // nat_dsp_fft.c
 void nat_dsp_fft_function(vm_state *vm, const int16_t *arguments);
 void nat_dsp_mag_function(vm_state *vm, const int16_t *arguments);

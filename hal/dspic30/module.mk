@@ -15,8 +15,11 @@ XC16_GCC := $(XC16_DIR)/xc16-gcc
 XC16_BIN2HEX := $(XC16_DIR)/xc16-bin2hex
 
 DSPIC30_OUT := $(BUILD)/dspic30
-DSPIC30_SOURCES := $(sort $(wildcard vm/*.c native_functions/*.c firmware/*.c hal/dspic30/*.c \
-                                     drivers/epuck/*.c) bootloader/bytecode_store.c)
+# native_functions/nat_dsp_dspic30.c, the DSP-engine inner loop of the DSP
+# natives, replaces the portable nat_dsp_kernel.c (same function).
+DSPIC30_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c, \
+                     $(sort $(wildcard vm/*.c native_functions/*.c firmware/*.c hal/dspic30/*.c \
+                                       drivers/epuck/*.c) bootloader/bytecode_store.c))
 DSPIC30_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_SOURCES))
 DSPIC30_LINKER_SCRIPT := linker/epuck-app.gld
 # -mcpu names the part; -omf=elf the object format bin2hex reads; the
