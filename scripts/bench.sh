@@ -111,6 +111,20 @@ read -r sim_many sim_many_cpu sim_many_wall < <("$bin/bench-node" simulator \
     $simulator_robots_many $simulator_seconds)
 robots_per_core=$(awk -v c="$sim_many" 'BEGIN { printf "%.0f", 1 / c }')
 
+# --- simulated arena ---------------------------------------------------------
+echo "bench: arena" >&2
+arena_goal_factor=10 # at 100 robots, on one core (issue 7)
+arena_port=$((40000 + RANDOM % 20000))
+# Simulated seconds over wall-clock seconds, as epuck-emu reports on stopping.
+arena_factor() { # robots simulated_seconds
+    "$bin/epuck-emu" --arena default --robots "$1" --load examples/paper-annex.aesl \
+        --speed max --duration "$2" --port "$arena_port" --quiet |
+        sed -n 's/.*(\([0-9.]*\)x real time).*/\1/p'
+}
+arena_6=$(arena_factor 6 60)
+arena_100=$(arena_factor 100 10)
+arena_1000=$(arena_factor 1000 2)
+
 # --- the table -------------------------------------------------------------
 table=$(
     echo "| figure | ours | reference | ours / reference | goal |"
@@ -132,6 +146,9 @@ table=$(
     echo "| simulator: CPU s per robot-second, 1 robot running the paper annex | $sim_one | - | - | |"
     echo "| simulator: CPU s per robot-second, $simulator_robots_many robots ($sim_many_cpu s CPU in $sim_many_wall s) | $sim_many | - | - | |"
     echo "| simulator: robots one core would keep in real time (extrapolated from the line above; epuck-emu runs at most 1000) | ≈ $robots_per_core | - | - | |"
+    echo "| arena: real-time factor, default arena, 6 robots running the paper annex (60 simulated s) | ${arena_6}× | - | - | |"
+    echo "| arena: real-time factor, default arena, 100 robots running the paper annex (10 simulated s) | ${arena_100}× | - | - | ≥ ${arena_goal_factor}× |"
+    echo "| arena: real-time factor, default arena, 1000 robots running the paper annex (2 simulated s) | ${arena_1000}× | - | - | |"
 )
 
 cpu_model=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)
@@ -183,6 +200,11 @@ cores=$(nproc)
     echo "- Simulator: \`bench-node simulator N $simulator_seconds\` runs \`epuck-emu"
     echo "  --robots N --load examples/paper-annex.aesl\` for $simulator_seconds s of wall"
     echo "  time and divides the CPU time it used by N × seconds."
+    echo "- Arena: \`epuck-emu --arena default --robots N --load examples/paper-annex.aesl"
+    echo "  --speed max --duration S\` (one process, one core); the factor is the"
+    echo "  simulated time over the wall-clock time of the run, setup excluded, as"
+    echo "  epuck-emu prints it when it stops. The square grows with N (about 20 cm ×"
+    echo "  20 cm per robot, docs/arena-format.md)."
 } >"$report"
 echo "$table"
 echo "bench: written to $report" >&2

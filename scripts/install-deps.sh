@@ -12,6 +12,7 @@ packages=(
     aseba libdashel-dev locales                    # the reference implementation (tests only)
     valgrind                                       # instruction counts in benchmarks
     python3                                        # test and benchmark scripts
+    libenki-dev                                    # the simulated arena (physics, e-puck sensors)
 )
 
 missing=()

@@ -2,9 +2,11 @@
 // real firmware (VM, natives, protocol node) on a simulated board; together
 // they form one Aseba network that tools reach over TCP.
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -15,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "arena_file.hpp"
+#include "arena_simulation.hpp"
 #include "network.hpp"
 #include "network_status.hpp"
 #include "tools/compiler/program_file.hpp"
@@ -45,10 +49,24 @@ Options:
   --quiet           no status line
   -h, --help        show this help
 
-The robots stand in a flat, empty world (no physics yet): their drivers read
-neutral sensor values (no obstacle, robot level, silence), ir_sensors fires
-after each full IR update (about 63 Hz) and timer every timer.period ms; the
-flat world has no camera, so the camera event does not fire.
+Arena mode (robots in a physical world, simulated by Enki):
+  --arena FILE      run the arena described in FILE (docs/arena-format.md),
+                    or `default` for the paper's setup: a square arena with
+                    red, green and blue ground areas and 6 e-pucks
+  --robots N        in arena mode, keep the file's first N robots or add
+                    robots on free places up to N (default: the file's)
+  --seed N          seed of every random draw (default 1): the same arena,
+                    seed and program give the same run, bit for bit, while
+                    no tool sends frames
+  --speed S         `max` (as fast as possible, the default) or `realtime`
+  --duration S      stop after S simulated seconds
+  --headless        accepted for compatibility: there is no window anyway
+
+Without --arena, the robots stand in a flat, empty world (no physics): their
+drivers read neutral sensor values (no obstacle, robot level, silence),
+ir_sensors fires after each full IR update (about 63 Hz) and timer every
+timer.period ms; the flat world has no camera, so the camera event does not
+fire.
 )";
 
 std::atomic<bool> stop_requested{ false };
@@ -65,6 +83,10 @@ struct Options {
     std::string load;
     std::string node;
     bool quiet = false;
+    std::string arena;
+    bool robots_given = false;
+    uint32_t seed = 1;
+    bool realtime = false;
 };
 
 [[noreturn]] void fail(const std::string &message)
@@ -104,6 +126,18 @@ Options parse_options(int argc, char **argv)
             options.port = uint16_t(parse_number("--port", value(), 1, 65535));
         } else if (argument == "--robots") {
             options.robots = unsigned(parse_number("--robots", value(), 1, 1000));
+            options.robots_given = true;
+        } else if (argument == "--arena") {
+            options.arena = value();
+        } else if (argument == "--seed") {
+            options.seed = uint32_t(parse_number("--seed", value(), 0, 0xFFFFFFFFul));
+        } else if (argument == "--speed") {
+            std::string speed = value();
+            if (speed != "max" && speed != "realtime")
+                fail("--speed is max or realtime, not '" + speed + "'");
+            options.realtime = speed == "realtime";
+        } else if (argument == "--headless") {
+            // There is no window to hide.
         } else if (argument == "--load") {
             options.load = value();
         } else if (argument == "--node") {
@@ -153,6 +187,101 @@ aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &b
     return program;
 }
 
+// Arena mode: the robots in an Enki world, in simulated time (see
+// hal/host/arena_simulation.hpp); returns the exit status.
+int run_arena(const Options &options,
+              const aseba::ProgramFile &program,
+              const std::vector<uint16_t> &bytecode)
+{
+    using aseba::arena::Arena;
+    Arena arena;
+    try {
+        if (options.arena == "default")
+            arena = aseba::arena::default_arena(options.robots_given ? options.robots : 6);
+        else
+            arena = aseba::arena::read_arena_file(options.arena);
+        if (options.robots_given)
+            aseba::arena::set_robot_count(arena, options.robots);
+    } catch (const std::exception &error) {
+        fail(error.what());
+    }
+    aseba::arena::ArenaSimulation simulation(arena, options.seed, bytecode);
+    aseba::host::Network &network = simulation.network();
+    try {
+        network.listen(options.port);
+    } catch (const std::exception &error) {
+        fail(error.what());
+    }
+    aseba::host::NetworkStatus status(program.definitions.events);
+    network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
+
+    std::printf("epuck-emu: arena %s (%.0f x %.0f cm, %zu ground area%s), %zu robot%s on "
+                "tcp:port=%u, seed %u, %s speed%s%s\n",
+                options.arena.c_str(),
+                arena.width,
+                arena.height,
+                arena.areas.size(),
+                arena.areas.size() == 1 ? "" : "s",
+                arena.robots.size(),
+                arena.robots.size() == 1 ? "" : "s",
+                unsigned(options.port),
+                unsigned(options.seed),
+                options.realtime ? "real-time" : "maximum",
+                options.load.empty() ? "" : ", running ",
+                options.load.c_str());
+    std::fflush(stdout);
+
+    const bool terminal = isatty(STDOUT_FILENO);
+    const double status_period = terminal ? 0.5 : 10; // wall-clock seconds
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    auto wall_seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+    double next_status = status_period;
+    double last_status_wall = 0;
+    double last_status_simulated = 0;
+    while (!stop_requested) {
+        if (options.duration_seconds > 0 && simulation.seconds() >= options.duration_seconds)
+            break;
+        simulation.step();
+        double wall = wall_seconds();
+        if (options.realtime && simulation.seconds() > wall) {
+            // Ahead of the clock: wait, serving tools meanwhile.
+            constexpr double milliseconds_per_second = 1000;
+            network.service(
+              int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
+            wall = wall_seconds();
+        }
+        if (!options.quiet && wall >= next_status) {
+            next_status = wall + status_period;
+            double factor = (simulation.seconds() - last_status_simulated) /
+                            std::max(wall - last_status_wall, 1e-9);
+            last_status_wall = wall;
+            last_status_simulated = simulation.seconds();
+            char head[64];
+            std::snprintf(head, sizeof head, "%6.1fx real time | ", factor);
+            std::string line =
+              head +
+              status.line(simulation.seconds(), simulation.robot_count(), network.client_count());
+            std::printf(terminal ? "\r%s\033[K" : "%s\n", line.c_str());
+            std::fflush(stdout);
+        }
+    }
+    double wall = wall_seconds();
+    std::printf("%sepuck-emu: stopped at %.1f simulated s after %.1f s (%.1fx real time), "
+                "%llu frames on the network\n",
+                terminal && !options.quiet ? "\n" : "",
+                simulation.seconds(),
+                wall,
+                simulation.seconds() / std::max(wall, 1e-9),
+                static_cast<unsigned long long>(network.frames_moved()));
+    if (!options.quiet) {
+        std::string line =
+          status.line(simulation.seconds(), simulation.robot_count(), network.client_count());
+        std::printf("epuck-emu: %s\n", line.c_str());
+    }
+    return 0;
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -166,6 +295,8 @@ int main(int argc, char **argv)
     aseba::ProgramFile program;
     if (!options.load.empty())
         program = load_program(options, bytecode);
+    if (!options.arena.empty())
+        return run_arena(options, program, bytecode);
 
     std::vector<std::unique_ptr<Robot>> robots;
     aseba::host::Network network;

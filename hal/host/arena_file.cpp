@@ -1,0 +1,322 @@
+// Arena files: one statement a line (docs/arena-format.md), and the built-in
+// arena of the paper's setup.
+
+#include "arena_file.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace aseba::arena
+{
+namespace
+{
+
+constexpr double pi = 3.14159265358979323846;
+constexpr double degrees_per_radian = 180 / pi;
+// An e-puck's body radius (cm), and the room a robot placed on a grid needs.
+constexpr double robot_radius = 3.7;
+constexpr double grid_spacing = 10;
+constexpr double placement_clearance = 1;
+
+// The default arena: a 1 m square (the scale of the paper's photographs),
+// each robot given about 20 cm x 20 cm when there are more than fit.
+constexpr double default_side = 100;
+constexpr double room_per_robot = 20;
+constexpr double default_area_radius = 14; // fraction of a 100 cm side, scaled
+
+bool inside_unit(double value)
+{
+    return value >= 0 && value <= 1;
+}
+
+class LineReader
+{
+  public:
+    LineReader(const std::string &line, const std::string &where)
+      : stream_(line)
+      , where_(where)
+    {
+    }
+
+    std::string word()
+    {
+        std::string text;
+        if (!(stream_ >> text))
+            fail("missing value");
+        return text;
+    }
+
+    double number(const char *what)
+    {
+        std::string text = word();
+        char *end = nullptr;
+        double value = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(value))
+            fail(std::string(what) + " must be a number, not '" + text + "'");
+        return value;
+    }
+
+    double positive(const char *what)
+    {
+        double value = number(what);
+        if (value <= 0)
+            fail(std::string(what) + " must be above 0");
+        return value;
+    }
+
+    Color color()
+    {
+        Color color;
+        color.red = number("red");
+        color.green = number("green");
+        color.blue = number("blue");
+        if (!inside_unit(color.red) || !inside_unit(color.green) || !inside_unit(color.blue))
+            fail("colour components go from 0 to 1");
+        return color;
+    }
+
+    bool more()
+    {
+        return !(stream_ >> std::ws).eof();
+    }
+
+    void end()
+    {
+        std::string extra;
+        if (stream_ >> extra)
+            fail("unexpected '" + extra + "'");
+    }
+
+    [[noreturn]] void fail(const std::string &message) const
+    {
+        throw std::runtime_error(where_ + ": " + message);
+    }
+
+  private:
+    std::istringstream stream_;
+    std::string where_;
+};
+
+bool robot_fits(const Arena &arena, double x, double y)
+{
+    double margin = robot_radius + placement_clearance;
+    if (x < margin || y < margin || x > arena.width - margin || y > arena.height - margin)
+        return false;
+    for (const RobotPlacement &robot : arena.robots)
+        if (std::hypot(robot.x - x, robot.y - y) < 2 * margin)
+            return false;
+    for (const Obstacle &obstacle : arena.obstacles) {
+        // A bounding circle is enough to keep placements clear.
+        double reach = obstacle.shape == Obstacle::Shape::cylinder
+                         ? obstacle.radius
+                         : std::hypot(obstacle.length, obstacle.width) / 2;
+        if (std::hypot(obstacle.x - x, obstacle.y - y) < reach + margin)
+            return false;
+    }
+    return true;
+}
+
+} // namespace
+
+bool GroundArea::contains(double px, double py) const
+{
+    if (shape == Shape::disc)
+        return std::hypot(px - x, py - y) <= radius;
+    return px >= x && px <= x + width && py >= y && py <= y + height;
+}
+
+Color Arena::ground_color(double x, double y) const
+{
+    for (auto area = areas.rbegin(); area != areas.rend(); ++area)
+        if (area->contains(x, y))
+            return area->color;
+    return floor_color;
+}
+
+Arena parse_arena(const std::string &text, const std::string &source)
+{
+    Arena arena;
+    arena.robots.clear();
+    std::istringstream lines(text);
+    std::string line;
+    unsigned number = 0;
+    bool sized = false;
+    while (std::getline(lines, line)) {
+        number++;
+        line = line.substr(0, line.find('#'));
+        if (line.find_first_not_of(" \t\r") == std::string::npos)
+            continue;
+        LineReader read(line, source + ":" + std::to_string(number));
+        std::string keyword = read.word();
+        if (keyword == "size") {
+            arena.width = read.positive("width");
+            arena.height = read.positive("height");
+            sized = true;
+        } else if (keyword == "walls") {
+            arena.wall_color = read.color();
+        } else if (keyword == "floor") {
+            arena.floor_color = read.color();
+        } else if (keyword == "camera-tilt") {
+            arena.camera_tilt_degrees = read.number("tilt");
+            if (arena.camera_tilt_degrees < 0 || arena.camera_tilt_degrees >= 90)
+                read.fail("the camera tilt goes from 0 to below 90 degrees");
+        } else if (keyword == "wheel-noise") {
+            arena.wheel_noise = read.number("noise");
+            if (arena.wheel_noise < 0 || arena.wheel_noise >= 1)
+                read.fail("the wheel noise goes from 0 to below 1");
+        } else if (keyword == "area") {
+            GroundArea area;
+            std::string shape = read.word();
+            area.x = read.number("x");
+            area.y = read.number("y");
+            if (shape == "rectangle") {
+                area.shape = GroundArea::Shape::rectangle;
+                area.width = read.positive("width");
+                area.height = read.positive("height");
+            } else if (shape == "disc") {
+                area.shape = GroundArea::Shape::disc;
+                area.radius = read.positive("radius");
+            } else {
+                read.fail("an area is a rectangle or a disc, not '" + shape + "'");
+            }
+            area.color = read.color();
+            if (read.more()) {
+                std::string option = read.word();
+                if (option != "shock")
+                    read.fail("expected 'shock SECONDS' after the colour, not '" + option + "'");
+                area.shock_period = read.positive("shock period");
+            }
+            arena.areas.push_back(area);
+        } else if (keyword == "obstacle") {
+            Obstacle obstacle;
+            std::string shape = read.word();
+            obstacle.x = read.number("x");
+            obstacle.y = read.number("y");
+            if (shape == "box") {
+                obstacle.shape = Obstacle::Shape::box;
+                obstacle.length = read.positive("length");
+                obstacle.width = read.positive("width");
+                obstacle.heading_degrees = read.number("heading");
+            } else if (shape == "cylinder") {
+                obstacle.shape = Obstacle::Shape::cylinder;
+                obstacle.radius = read.positive("radius");
+            } else {
+                read.fail("an obstacle is a box or a cylinder, not '" + shape + "'");
+            }
+            obstacle.color = read.color();
+            arena.obstacles.push_back(obstacle);
+        } else if (keyword == "robot") {
+            RobotPlacement robot;
+            double id = read.number("node id");
+            if (id < 1 || id > 0xFFFE || id != std::floor(id))
+                read.fail("a node id is a whole number from 1 to 65534");
+            robot.node_id = uint16_t(id);
+            robot.x = read.number("x");
+            robot.y = read.number("y");
+            robot.heading_degrees = read.number("heading");
+            for (const RobotPlacement &other : arena.robots)
+                if (other.node_id == robot.node_id)
+                    read.fail("node id " + std::to_string(robot.node_id) + " is used twice");
+            arena.robots.push_back(robot);
+        } else {
+            read.fail("unknown statement '" + keyword + "'");
+        }
+        read.end();
+    }
+    if (!sized)
+        throw std::runtime_error(source + ": no 'size' statement");
+    for (const RobotPlacement &robot : arena.robots)
+        if (robot.x < 0 || robot.y < 0 || robot.x > arena.width || robot.y > arena.height)
+            throw std::runtime_error(source + ": robot " + std::to_string(robot.node_id) +
+                                     " stands outside the arena");
+    return arena;
+}
+
+Arena read_arena_file(const std::string &path)
+{
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+        throw std::runtime_error("cannot read arena file '" + path + "'");
+    std::ostringstream text;
+    text << file.rdbuf();
+    return parse_arena(text.str(), path);
+}
+
+Arena default_arena(size_t robots)
+{
+    Arena arena;
+    double side = std::max(default_side, room_per_robot * std::ceil(std::sqrt(double(robots))));
+    double scale = side / default_side;
+    arena.width = side;
+    arena.height = side;
+    // Light colours on a dark floor: the annex counts a colour only when
+    // the mean of its camera means is above 38 of 93 (examples/README.md).
+    const Color red{ 1.0, 0.3, 0.3 }, green{ 0.3, 1.0, 0.3 }, blue{ 0.3, 0.3, 1.0 };
+    const double area_radius = default_area_radius * scale;
+    auto disc = [&](double x, double y, Color color) {
+        GroundArea area;
+        area.shape = GroundArea::Shape::disc;
+        area.x = x * scale;
+        area.y = y * scale;
+        area.radius = area_radius;
+        area.color = color;
+        arena.areas.push_back(area);
+    };
+    disc(22, 78, red);
+    disc(78, 78, green);
+    disc(50, 20, blue);
+    // The experimenter knocks robots that linger on red, once a second.
+    constexpr double red_shock_period = 1;
+    arena.areas[0].shock_period = red_shock_period;
+    // The paper's 6 robots start on a ring around the centre, facing out.
+    constexpr size_t ring_robots = 6;
+    constexpr double ring_radius = 12;
+    for (size_t i = 0; i < std::min(robots, ring_robots); i++) {
+        double heading = 360.0 * double(i) / double(ring_robots) + 30;
+        RobotPlacement robot;
+        robot.node_id = uint16_t(i + 1);
+        robot.x = side / 2 + ring_radius * std::cos(heading / degrees_per_radian);
+        robot.y = side / 2 + ring_radius * std::sin(heading / degrees_per_radian);
+        robot.heading_degrees = heading;
+        arena.robots.push_back(robot);
+    }
+    set_robot_count(arena, robots);
+    return arena;
+}
+
+void set_robot_count(Arena &arena, size_t count)
+{
+    if (arena.robots.size() >= count) {
+        arena.robots.resize(count);
+        return;
+    }
+    uint32_t next_id = 1;
+    for (const RobotPlacement &robot : arena.robots)
+        next_id = std::max<uint32_t>(next_id, robot.node_id + 1u);
+    // Free grid places, row by row; headings vary so that robots spread out.
+    constexpr double heading_step = 137;
+    for (double y = grid_spacing / 2; y < arena.height && arena.robots.size() < count;
+         y += grid_spacing) {
+        for (double x = grid_spacing / 2; x < arena.width && arena.robots.size() < count;
+             x += grid_spacing) {
+            if (!robot_fits(arena, x, y))
+                continue;
+            if (next_id > 0xFFFE)
+                throw std::runtime_error("no node ids left for more robots");
+            RobotPlacement robot;
+            robot.node_id = uint16_t(next_id++);
+            robot.x = x;
+            robot.y = y;
+            robot.heading_degrees = std::fmod(heading_step * double(robot.node_id), 360.0);
+            arena.robots.push_back(robot);
+        }
+    }
+    if (arena.robots.size() < count)
+        throw std::runtime_error("only " + std::to_string(arena.robots.size()) +
+                                 " robots fit in the arena, not " + std::to_string(count));
+}
+
+} // namespace aseba::arena

@@ -1,0 +1,654 @@
+// The Enki world of the simulated arena and the per-robot host_world tables
+// that show it to each robot's drivers (see enki_world.hpp and
+// docs/arena-format.md).
+
+#include "enki_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <new>
+
+namespace aseba::arena
+{
+namespace
+{
+
+constexpr double pi = 3.14159265358979323846;
+constexpr double radians_per_degree = pi / 180;
+
+// Enki's e-puck (robots/e-puck/EPuck.cpp, measured in
+// ../shared/research/enki.md §A.2): body, wheels, sensors.
+constexpr double body_radius = 3.7;
+constexpr double body_height = 4.7;
+constexpr double body_mass = 152;
+const Enki::Color body_color(0, 0.7, 0);
+constexpr double wheel_distance = 5.1;
+// Enki clamps wheel speeds here; the firmware already limits them to 1000
+// steps/s, so the clamp only needs to stay clear of step-count rounding.
+constexpr double wheel_speed_limit = 2 * 12.8;
+
+constexpr double ir_height = 2.5;
+constexpr double ir_range = 12;
+constexpr double ir_response_maximum = 3731;
+constexpr double ir_response_x0 = 0.3;
+constexpr double ir_response_c = 0.7;
+constexpr double ir_noise_sd = 10;
+struct IrPlacement {
+    double x, y, heading_degrees;
+};
+constexpr IrPlacement ir_placements[EnkiEpuck::ir_count] = {
+    { 3.35, -1.05, -18 }, { 2.3, -2.6, -45 }, { 0, -3.3, -90 }, { -3.0, -1.8, -142 },
+    { -3.0, 1.8, 142 },   { 0, 3.3, 90 },     { 2.3, 2.6, 45 }, { 3.35, 1.05, 18 },
+};
+
+// The camera: Enki's place for it, the real sensor's field of view (hardware
+// §3.5: about 56° x 42°), and the range of Enki's camera, which draws what
+// rows above the horizon see (objects further away are not drawn: Enki's
+// camera costs O(robots²) otherwise).
+constexpr double camera_forward = 3.7;
+constexpr double camera_height = 2.2;
+constexpr double camera_horizontal_field = 56 * radians_per_degree;
+constexpr double camera_vertical_field = 42 * radians_per_degree;
+constexpr double camera_horizon_range = 40;
+constexpr unsigned camera_window_rows = 120;
+constexpr unsigned camera_row_pixels = 120;
+constexpr unsigned camera_row_bytes = 2 * camera_row_pixels;
+// PO3030K identification (hardware §3.5): registers 0x00, 0x01.
+constexpr uint8_t camera_id_high = 0x30;
+constexpr uint8_t camera_id_low = 0x30;
+constexpr unsigned rgb565_red_levels = 31;
+constexpr unsigned rgb565_green_levels = 63;
+constexpr unsigned rgb565_blue_levels = 31;
+
+// Obstacles are walls for the robots: taller than their body and sensors.
+constexpr double obstacle_height = 10;
+constexpr double static_mass = -1;
+
+// Motors (hardware §3.6): 1000 steps a wheel turn, 12.8 cm a turn; the
+// full-step phase patterns (bit 3 = A .. bit 0 = D) in sequence order.
+constexpr double centimetres_per_step = 12.8 / 1000;
+constexpr uint8_t phase_patterns[4] = { 0x5, 0x6, 0xA, 0x9 };
+constexpr int phase_count = 4;
+
+// The accelerometer (hardware §3.3): counts at 0 g and per g, +X right,
+// +Y backward, Z up.
+constexpr double zero_g_counts = 2048;
+constexpr double counts_per_g = 768;
+constexpr double gravity = 981; // cm/s²
+constexpr double adc_maximum = 4095;
+
+enum Motor { left_motor, right_motor };
+
+} // namespace
+
+struct EnkiWorld::RobotState {
+    host_world table;
+    EnkiWorld *world = nullptr;
+    size_t index = 0;
+    std::array<bool, HAL_PIN_COUNT> output{};
+    // Per motor: the phase index last driven, and steps since the last
+    // Enki step (+ forward).
+    int phase[2] = { 0, 0 };
+    int32_t steps[2] = { 0, 0 };
+    double wheel_speed[2] = { 0, 0 };
+    std::array<uint8_t, 256> camera_registers{};
+    // The row last rendered, for the step it was rendered in.
+    uint64_t rendered_step = UINT64_MAX;
+    uint16_t rendered_row = 0;
+    uint8_t row_bytes[camera_row_bytes] = {};
+    // The impact the accelerometer feels, and for how many more steps.
+    Enki::Vector impact;
+    unsigned impact_steps_left = 0;
+    // Seconds spent without a break on shock areas since the last knock.
+    double shock_clock = 0;
+    // The ADC readings of this step, worked out once per step since the
+    // firmware samples far more often than the world changes.
+    uint16_t proximity_lit[EnkiEpuck::ir_count] = {};
+    uint16_t acceleration[3] = { 0, 0, 0 };
+};
+
+namespace
+{
+
+using RobotState = EnkiWorld::RobotState;
+
+RobotState &state_of(void *context)
+{
+    return *static_cast<RobotState *>(context);
+}
+
+double clamp_adc(double value)
+{
+    return std::clamp(std::round(value), 0.0, adc_maximum);
+}
+
+uint16_t world_adc_read(void *context, uint8_t channel, uint64_t)
+{
+    RobotState &state = state_of(context);
+    if (channel >= HAL_ADC_PROXIMITY_0) {
+        unsigned sensor = channel - HAL_ADC_PROXIMITY_0;
+        hal_pin emitter = hal_pin(HAL_PIN_IR_PULSE_0_4 + sensor % 4);
+        return state.output[emitter] ? state.proximity_lit[sensor] : HOST_FLAT_PROXIMITY;
+    }
+    if (channel >= HAL_ADC_ACCELEROMETER_X && channel <= HAL_ADC_ACCELEROMETER_Z)
+        return state.acceleration[channel - HAL_ADC_ACCELEROMETER_X];
+    if (channel >= HAL_ADC_MICROPHONE_0 && channel < HAL_ADC_ACCELEROMETER_X)
+        return HOST_FLAT_MICROPHONE;
+    return HOST_FLAT_OTHER_INPUT;
+}
+
+bool world_pin_read(void *, hal_pin pin, uint64_t)
+{
+    // Selector 0, battery fine, remote silent, camera lines idle.
+    return pin == HAL_PIN_BATTERY_LOW || pin == HAL_PIN_REMOTE;
+}
+
+// A motor's phase lines changed: when they show the next pattern of the
+// sequence, or the one before, the motor made a step.
+void phase_written(RobotState &state, Motor motor, hal_pin first)
+{
+    uint8_t pattern = 0;
+    for (int line = 0; line < phase_count; line++)
+        pattern = uint8_t(pattern << 1 | (state.output[first + line] ? 1 : 0));
+    const uint8_t *found = std::find(phase_patterns, phase_patterns + phase_count, pattern);
+    if (found == phase_patterns + phase_count)
+        return; // coils off, or half-way through writing the lines
+    int index = int(found - phase_patterns);
+    int change = (index - state.phase[motor] + phase_count) % phase_count;
+    state.phase[motor] = index;
+    // The motors are mirror-mounted: forward steps the left motor's phase
+    // index down and the right motor's up (§3.6). A jump of two is no step.
+    int up = change == 1 ? 1 : change == phase_count - 1 ? -1 : 0;
+    state.steps[motor] += motor == left_motor ? -up : up;
+}
+
+void world_pin_written(void *context, hal_pin pin, bool high, uint64_t)
+{
+    RobotState &state = state_of(context);
+    state.output[pin] = high;
+    if (pin >= HAL_PIN_MOTOR_LEFT_A && pin <= HAL_PIN_MOTOR_LEFT_D)
+        phase_written(state, left_motor, HAL_PIN_MOTOR_LEFT_A);
+    else if (pin >= HAL_PIN_MOTOR_RIGHT_A && pin <= HAL_PIN_MOTOR_RIGHT_D)
+        phase_written(state, right_motor, HAL_PIN_MOTOR_RIGHT_A);
+}
+
+bool world_i2c_write(void *context,
+                     uint8_t device,
+                     uint8_t reg,
+                     const uint8_t *bytes,
+                     uint16_t count)
+{
+    RobotState &state = state_of(context);
+    if (device != HAL_I2C_CAMERA_ADDRESS)
+        return false;
+    for (uint16_t i = 0; i < count; i++)
+        state.camera_registers[uint8_t(reg + i)] = bytes[i];
+    return true;
+}
+
+bool world_i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count)
+{
+    RobotState &state = state_of(context);
+    if (device != HAL_I2C_CAMERA_ADDRESS)
+        return false;
+    state.camera_registers[0] = camera_id_high;
+    state.camera_registers[1] = camera_id_low;
+    for (uint16_t i = 0; i < count; i++)
+        bytes[i] = state.camera_registers[uint8_t(reg + i)];
+    return true;
+}
+
+uint8_t world_camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
+{
+    RobotState &state = state_of(context);
+    if (index >= camera_row_bytes)
+        return 0;
+    if (state.rendered_step != state.world->steps() || state.rendered_row != row) {
+        // RGB565, high byte first (hardware §3.5).
+        Color pixels[camera_row_pixels];
+        state.world->camera_row(state.index, row, pixels);
+        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
+            const Color &color = pixels[pixel];
+            unsigned red = unsigned(std::lround(color.red * rgb565_red_levels));
+            unsigned green = unsigned(std::lround(color.green * rgb565_green_levels));
+            unsigned blue = unsigned(std::lround(color.blue * rgb565_blue_levels));
+            uint16_t word = uint16_t(red << 11 | green << 5 | blue);
+            state.row_bytes[2 * pixel] = uint8_t(word >> 8);
+            state.row_bytes[2 * pixel + 1] = uint8_t(word & 0xFF);
+        }
+        state.rendered_step = state.world->steps();
+        state.rendered_row = row;
+    }
+    return state.row_bytes[index];
+}
+
+Color from_enki(const Enki::Color &color)
+{
+    return { std::clamp(color.r(), 0.0, 1.0),
+             std::clamp(color.g(), 0.0, 1.0),
+             std::clamp(color.b(), 0.0, 1.0) };
+}
+
+Enki::Color to_enki(const Color &color)
+{
+    return Enki::Color(color.red, color.green, color.blue);
+}
+
+size_t aligned(size_t bytes)
+{
+    constexpr size_t alignment = __STDCPP_DEFAULT_NEW_ALIGNMENT__;
+    return (bytes + alignment - 1) / alignment * alignment;
+}
+
+} // namespace
+
+void FreshIRSensor::init(double dt, Enki::World *world)
+{
+    Enki::IRSensor::init(dt, world);
+    // Debian's Enki forgets this (upstream fix 7dbaa0b): without it a ray
+    // that meets nothing this step keeps last step's value.
+    std::fill(rayValues.begin(), rayValues.end(), 0.0);
+}
+
+namespace
+{
+FreshIRSensor make_ir(Enki::Robot *owner, unsigned i)
+{
+    const IrPlacement &place = ir_placements[i];
+    return FreshIRSensor(owner,
+                         Enki::Vector(place.x, place.y),
+                         ir_height,
+                         place.heading_degrees * radians_per_degree,
+                         ir_range,
+                         ir_response_maximum,
+                         ir_response_x0,
+                         ir_response_c,
+                         ir_noise_sd);
+}
+
+// Whether some rows of the window look above the horizon, where Enki's
+// camera (costly) is needed; below it our own ray casting does the work.
+bool camera_looks_above_horizon(double tilt_degrees)
+{
+    return tilt_degrees * radians_per_degree < camera_vertical_field / 2;
+}
+
+} // namespace
+
+EnkiEpuck::EnkiEpuck(double wheel_noise, double camera_half_field_radians, bool camera_used)
+  : DifferentialWheeled(wheel_distance, wheel_speed_limit, wheel_noise)
+  , infrared{ { make_ir(this, 0),
+                make_ir(this, 1),
+                make_ir(this, 2),
+                make_ir(this, 3),
+                make_ir(this, 4),
+                make_ir(this, 5),
+                make_ir(this, 6),
+                make_ir(this, 7) } }
+  , camera(this,
+           Enki::Vector(camera_forward, 0),
+           camera_height,
+           0,
+           camera_half_field_radians,
+           camera_pixels)
+{
+    for (FreshIRSensor &sensor : infrared)
+        addLocalInteraction(&sensor);
+    if (camera_used)
+        addLocalInteraction(&camera);
+    setCylindric(body_radius, body_height, body_mass);
+    setColor(body_color);
+}
+
+void EnkiEpuck::applyForces(double dt)
+{
+    // The wheels set the velocity; remember it to see what collisions change.
+    DifferentialWheeled::applyForces(dt);
+    commanded_velocity_ = speed;
+}
+
+void EnkiEpuck::collisionEvent(Enki::PhysicalObject *)
+{
+    collisions_this_step_++;
+}
+
+void EnkiEpuck::controlStep(double dt)
+{
+    // Enki clears the depth in the parent's controlStep: read it first.
+    collision_depth = getInterlacedDistance();
+    collisions = collisions_this_step_;
+    collisions_this_step_ = 0;
+    bool touching = collisions > 0;
+    // Only the start of a contact is an impact: a robot pushing on a wall
+    // stalls, it does not keep bouncing.
+    impact = touching && !touching_ ? (speed - commanded_velocity_) / dt : Enki::Vector();
+    touching_ = touching;
+    DifferentialWheeled::controlStep(dt);
+}
+
+uint16_t proximity_lit_reading(double enki_value, uint16_t ambient)
+{
+    // Enki's response was fitted to real e-puck readings (reflected light,
+    // 0..3731): the lit reading is that much below the ambient one.
+    double reflected = std::clamp(enki_value, 0.0, double(ambient));
+    return uint16_t(std::lround(double(ambient) - reflected));
+}
+
+uint16_t accelerometer_reading(unsigned axis, double forward, double leftward)
+{
+    double g;
+    switch (axis) {
+    case 0: g = -leftward / gravity; break; // +X = right
+    case 1: g = -forward / gravity; break;  // +Y = backward
+    default: g = 1; break;                  // upright
+    }
+    return uint16_t(clamp_adc(zero_g_counts + g * counts_per_g));
+}
+
+EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
+  : arena_(arena)
+{
+    world_ = std::make_unique<Enki::World>(arena.width, arena.height, to_enki(arena.wall_color));
+    world_->takeObjectOwnership = false;
+    world_->setRandomSeed(seed);
+    std::srand(seed); // Enki's IR noise draws from rand()
+
+    size_t robots_bytes = aligned(arena.robots.size() * sizeof(EnkiEpuck));
+    size_t total = robots_bytes + arena.obstacles.size() * sizeof(Enki::PhysicalObject);
+    objects_block_ = ::operator new(std::max<size_t>(total, 1));
+    auto *robot_memory = static_cast<EnkiEpuck *>(objects_block_);
+    auto *obstacle_memory =
+      reinterpret_cast<Enki::PhysicalObject *>(static_cast<char *>(objects_block_) + robots_bytes);
+
+    for (size_t i = 0; i < arena.robots.size(); i++) {
+        const RobotPlacement &place = arena.robots[i];
+        EnkiEpuck *robot =
+          new (robot_memory + i) EnkiEpuck(arena.wheel_noise,
+                                           camera_horizontal_field / 2,
+                                           camera_looks_above_horizon(arena.camera_tilt_degrees));
+        robot->pos = Enki::Point(place.x, place.y);
+        robot->angle = place.heading_degrees * radians_per_degree;
+        robot->camera.setRange(camera_horizon_range);
+        robots_.push_back(robot);
+        world_->addObject(robot);
+
+        auto state = std::make_unique<RobotState>();
+        state->world = this;
+        state->index = i;
+        state->table = { state.get(),     world_adc_read, world_pin_read,   world_pin_written,
+                         world_i2c_write, world_i2c_read, world_camera_byte };
+        states_.push_back(std::move(state));
+    }
+    // Before the first step: no reflection, no impact.
+    for (auto &state : states_) {
+        std::fill(std::begin(state->proximity_lit),
+                  std::end(state->proximity_lit),
+                  uint16_t(HOST_FLAT_PROXIMITY));
+        for (unsigned axis = 0; axis < 3; axis++)
+            state->acceleration[axis] = accelerometer_reading(axis, 0, 0);
+    }
+    for (size_t i = 0; i < arena.obstacles.size(); i++) {
+        const Obstacle &obstacle = arena.obstacles[i];
+        auto *object = new (obstacle_memory + i) Enki::PhysicalObject;
+        if (obstacle.shape == Obstacle::Shape::box)
+            object->setRectangular(obstacle.length, obstacle.width, obstacle_height, static_mass);
+        else
+            object->setCylindric(obstacle.radius, obstacle_height, static_mass);
+        object->setColor(to_enki(obstacle.color));
+        object->pos = Enki::Point(obstacle.x, obstacle.y);
+        object->angle = obstacle.heading_degrees * radians_per_degree;
+        obstacles_.push_back(object);
+        world_->addObject(object);
+    }
+}
+
+EnkiWorld::~EnkiWorld()
+{
+    world_.reset();
+    for (EnkiEpuck *robot : robots_)
+        robot->~EnkiEpuck();
+    for (Enki::PhysicalObject *object : obstacles_)
+        object->~PhysicalObject();
+    ::operator delete(objects_block_);
+}
+
+size_t EnkiWorld::robot_count() const
+{
+    return robots_.size();
+}
+
+const host_world *EnkiWorld::world_of(size_t index) const
+{
+    return &states_.at(index)->table;
+}
+
+EnkiEpuck &EnkiWorld::robot(size_t index)
+{
+    return *robots_.at(index);
+}
+
+void EnkiWorld::step()
+{
+    for (size_t i = 0; i < robots_.size(); i++) {
+        RobotState &state = *states_[i];
+        for (int motor : { left_motor, right_motor }) {
+            state.wheel_speed[motor] = state.steps[motor] * centimetres_per_step / step_seconds;
+            state.steps[motor] = 0;
+        }
+        robots_[i]->leftSpeed = state.wheel_speed[left_motor];
+        robots_[i]->rightSpeed = state.wheel_speed[right_motor];
+    }
+    world_->step(step_seconds);
+    for (size_t i = 0; i < robots_.size(); i++) {
+        RobotState &state = *states_[i];
+        Enki::Vector impact = robots_[i]->impact;
+        double period = shock_period_at(robots_[i]->pos);
+        state.shock_clock = period > 0 ? state.shock_clock + step_seconds : 0;
+        if (period > 0 && state.shock_clock >= period - step_seconds / 2) {
+            state.shock_clock = 0;
+            double heading = robots_[i]->angle;
+            impact = Enki::Vector(std::cos(heading), std::sin(heading)) * -knock_acceleration;
+        }
+        if (impact.x != 0 || impact.y != 0) {
+            state.impact = impact;
+            state.impact_steps_left = impact_steps;
+        } else if (state.impact_steps_left > 0 && --state.impact_steps_left == 0) {
+            state.impact = Enki::Vector();
+        }
+        update_readings(state);
+    }
+    steps_++;
+}
+
+void EnkiWorld::update_readings(RobotState &state)
+{
+    const EnkiEpuck &robot = *robots_[state.index];
+    for (unsigned sensor = 0; sensor < EnkiEpuck::ir_count; sensor++)
+        state.proximity_lit[sensor] =
+          proximity_lit_reading(robot.infrared[sensor].getValue(), HOST_FLAT_PROXIMITY);
+    Enki::Vector forward_axis(std::cos(robot.angle), std::sin(robot.angle));
+    double forward = state.impact * forward_axis;
+    double leftward = state.impact * forward_axis.perp();
+    for (unsigned axis = 0; axis < 3; axis++)
+        state.acceleration[axis] = accelerometer_reading(axis, forward, leftward);
+}
+
+double EnkiWorld::shock_period_at(const Enki::Point &point) const
+{
+    // The shortest period of the shock areas under the robot's centre.
+    double period = 0;
+    for (const GroundArea &area : arena_.areas)
+        if (area.shock_period > 0 && area.contains(point.x, point.y))
+            period = period > 0 ? std::min(period, area.shock_period) : area.shock_period;
+    return period;
+}
+
+Pose EnkiWorld::pose(size_t index) const
+{
+    const EnkiEpuck &robot = *robots_.at(index);
+    return { robot.pos.x, robot.pos.y, robot.angle };
+}
+
+void EnkiWorld::place(size_t index, const Pose &pose)
+{
+    EnkiEpuck &robot = *robots_.at(index);
+    robot.pos = Enki::Point(pose.x, pose.y);
+    robot.angle = pose.heading;
+}
+
+double EnkiWorld::left_wheel_speed(size_t index) const
+{
+    return states_.at(index)->wheel_speed[left_motor];
+}
+
+double EnkiWorld::right_wheel_speed(size_t index) const
+{
+    return states_.at(index)->wheel_speed[right_motor];
+}
+
+namespace
+{
+
+// Something a floor ray may meet before the floor: a robot or an obstacle,
+// taller than the camera.
+struct Occluder {
+    bool box = false;
+    Enki::Point centre;
+    double radius = 0; // circle; for a box, its bounding circle
+    double half_length = 0, half_width = 0, heading = 0;
+    Color color;
+};
+
+constexpr double no_hit = HUGE_VAL;
+
+// Where along the ray from `from` in unit direction `direction` it enters
+// the occluder (0 when it starts inside), or no_hit.
+double ray_entry(const Occluder &occluder, const Enki::Point &from, const Enki::Vector &direction)
+{
+    Enki::Vector to_centre = occluder.centre - from;
+    if (!occluder.box) {
+        double along = to_centre * direction;
+        double outside = to_centre.norm2() - occluder.radius * occluder.radius;
+        if (outside <= 0)
+            return 0;
+        double discriminant = along * along - outside;
+        if (along <= 0 || discriminant < 0)
+            return no_hit;
+        return along - std::sqrt(discriminant);
+    }
+    // A box: the slab test in the box's own frame.
+    double c = std::cos(occluder.heading), s = std::sin(occluder.heading);
+    double start[2] = { -(to_centre.x * c + to_centre.y * s),
+                        -(-to_centre.x * s + to_centre.y * c) };
+    double step[2] = { direction.x * c + direction.y * s, -direction.x * s + direction.y * c };
+    double half[2] = { occluder.half_length, occluder.half_width };
+    double enter = -no_hit, leave = no_hit;
+    for (int axis = 0; axis < 2; axis++) {
+        if (step[axis] == 0) {
+            if (std::abs(start[axis]) > half[axis])
+                return no_hit;
+            continue;
+        }
+        double t1 = (-half[axis] - start[axis]) / step[axis];
+        double t2 = (half[axis] - start[axis]) / step[axis];
+        enter = std::max(enter, std::min(t1, t2));
+        leave = std::min(leave, std::max(t1, t2));
+    }
+    if (enter > leave || leave < 0)
+        return no_hit;
+    return std::max(enter, 0.0);
+}
+
+// Where the ray leaves the arena through a wall.
+double wall_distance(const Arena &arena, const Enki::Point &from, const Enki::Vector &direction)
+{
+    double distance = no_hit;
+    if (direction.x > 0)
+        distance = std::min(distance, (arena.width - from.x) / direction.x);
+    if (direction.x < 0)
+        distance = std::min(distance, -from.x / direction.x);
+    if (direction.y > 0)
+        distance = std::min(distance, (arena.height - from.y) / direction.y);
+    if (direction.y < 0)
+        distance = std::min(distance, -from.y / direction.y);
+    return std::max(distance, 0.0);
+}
+
+} // namespace
+
+void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
+{
+    const EnkiEpuck &robot = *robots_.at(index);
+    // How far below the horizon the row looks.
+    double row_centre = (double(std::min(row, camera_window_rows - 1u)) + 0.5) / camera_window_rows;
+    double depression =
+      arena_.camera_tilt_degrees * radians_per_degree + (row_centre - 0.5) * camera_vertical_field;
+    if (depression <= 0) {
+        // Above the horizon: what Enki's camera sees. Enki's pixel 0 is the
+        // rightmost, the window's pixel 0 the leftmost.
+        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
+            unsigned enki_pixel =
+              EnkiEpuck::camera_pixels - 1 - pixel * EnkiEpuck::camera_pixels / camera_row_pixels;
+            pixels[pixel] = from_enki(robot.camera.image[enki_pixel]);
+        }
+        return;
+    }
+    // Below: the floor at `reach`, unless a robot, obstacle or wall stands
+    // nearer on the pixel's ray (all are taller than the camera).
+    double reach = camera_height / std::tan(depression);
+    Enki::Vector forward(std::cos(robot.angle), std::sin(robot.angle));
+    Enki::Point lens = robot.pos + forward * camera_forward;
+    std::vector<Occluder> near;
+    for (size_t other = 0; other < robots_.size(); other++) {
+        if (other == index || (robots_[other]->pos - lens).norm() > reach + body_radius)
+            continue;
+        Occluder occluder;
+        occluder.centre = robots_[other]->pos;
+        occluder.radius = body_radius;
+        occluder.color = from_enki(body_color);
+        near.push_back(occluder);
+    }
+    for (size_t i = 0; i < obstacles_.size(); i++) {
+        const Obstacle &obstacle = arena_.obstacles[i];
+        Occluder occluder;
+        occluder.box = obstacle.shape == Obstacle::Shape::box;
+        occluder.centre = Enki::Point(obstacle.x, obstacle.y);
+        occluder.half_length = obstacle.length / 2;
+        occluder.half_width = obstacle.width / 2;
+        occluder.heading = obstacle.heading_degrees * radians_per_degree;
+        occluder.radius =
+          occluder.box ? std::hypot(occluder.half_length, occluder.half_width) : obstacle.radius;
+        occluder.color = obstacle.color;
+        if ((occluder.centre - lens).norm() <= reach + occluder.radius)
+            near.push_back(occluder);
+    }
+    for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
+        // Left edge (+28°) to right edge (-28°), at the pixel's centre.
+        double pixel_angle = camera_horizontal_field / 2 -
+                             (double(pixel) + 0.5) * camera_horizontal_field / camera_row_pixels;
+        double direction_angle = robot.angle + pixel_angle;
+        Enki::Vector direction(std::cos(direction_angle), std::sin(direction_angle));
+        double nearest = reach;
+        Color color = arena_.wall_color;
+        bool floor = true;
+        double wall = wall_distance(arena_, lens, direction);
+        if (wall < nearest) {
+            nearest = wall;
+            floor = false;
+        }
+        for (const Occluder &occluder : near) {
+            double hit = ray_entry(occluder, lens, direction);
+            if (hit < nearest) {
+                nearest = hit;
+                color = occluder.color;
+                floor = false;
+            }
+        }
+        pixels[pixel] =
+          floor ? arena_.ground_color(lens.x + reach * direction.x, lens.y + reach * direction.y)
+                : color;
+    }
+}
+
+} // namespace aseba::arena

@@ -1,0 +1,174 @@
+// The e-pucks' physical world: one Enki world (Debian libenki) holding the
+// arena and its robots, and for each robot a host_world (host_world.h) that
+// turns Enki's state into what the robot's pins, ADC, I2C camera and pixel
+// port show, and turns the motor phases its firmware drives into wheel
+// speeds. The model and its choices are described in docs/arena-format.md.
+//
+// Debian's Enki 1.6.99 has three defects (../shared/research/enki.md),
+// handled here:
+// - IR values stick after an obstacle leaves: our IR sensor clears its rays
+//   at the start of every step.
+// - Enki's EPuck carries a hidden scanner turret that costs 2.5x in speed:
+//   our robot is built on DifferentialWheeled with the e-puck's sensors only.
+// - The collision depth reads 0 after a step: our robot reads it in its
+//   controlStep, before Enki clears it.
+// Enki visits its objects in address order; the robots and obstacles live in
+// one block, in arena order, so that a run repeats bit for bit.
+
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <enki/PhysicalEngine.h>
+#include <enki/interactions/CircularCam.h>
+#include <enki/interactions/IRSensor.h>
+#include <enki/robots/DifferentialWheeled.h>
+
+#include "arena_file.hpp"
+
+extern "C" {
+#include "hal/host/host_world.h"
+}
+
+namespace aseba::arena
+{
+
+// Enki's IR sensor with its rays cleared at the start of every step, so
+// that a value falls back once the obstacle has gone.
+class FreshIRSensor : public Enki::IRSensor
+{
+  public:
+    using Enki::IRSensor::IRSensor;
+    void init(double dt, Enki::World *world) override;
+};
+
+// An e-puck in Enki: Enki's e-puck body, wheels, 8 IR sensors and camera,
+// without the scanner turret; it also measures the impact of collisions.
+class EnkiEpuck : public Enki::DifferentialWheeled
+{
+  public:
+    static constexpr unsigned ir_count = 8;
+    static constexpr unsigned camera_pixels = 60;
+
+    // Enki steps the camera only when `camera_used`.
+    EnkiEpuck(double wheel_noise, double camera_half_field_radians, bool camera_used);
+
+    // The sensors Enki steps for this robot: the 8 IR sensors, the camera
+    // when used, and no hidden turret.
+    size_t sensor_count() const
+    {
+        return localInteractions.size();
+    }
+
+    std::array<FreshIRSensor, ir_count> infrared;
+    Enki::CircularCam camera;
+
+    // The velocity change (cm/s², world frame) of the impact in the last
+    // step: a contact that began in that step, else zero.
+    Enki::Vector impact;
+    // How deep the robot went into an obstacle in the last step (cm), read
+    // before Enki clears it.
+    double collision_depth = 0;
+    // Collisions reported by Enki in the last step.
+    unsigned collisions = 0;
+
+  protected:
+    void applyForces(double dt) override;
+    void controlStep(double dt) override;
+    void collisionEvent(Enki::PhysicalObject *other) override;
+
+  private:
+    Enki::Vector commanded_velocity_;
+    bool touching_ = false;
+    unsigned collisions_this_step_ = 0;
+};
+
+struct Pose {
+    double x = 0; // cm
+    double y = 0;
+    double heading = 0; // radians, counter-clockwise from +x
+};
+
+class EnkiWorld
+{
+  public:
+    // The simulated time one step covers (Enki's header advises 20-100 ms;
+    // 10 ms keeps impacts sharp and wheel steps fine).
+    static constexpr double step_seconds = 0.01;
+    // How long the accelerometer keeps feeling an impact: the body rings for
+    // a few milliseconds, and the firmware samples at 256 Hz.
+    static constexpr unsigned impact_steps = 2;
+    // The knock a robot gets on a shock area (cm/s², pointing backward, as
+    // a tap on its front): 2 g, clearly above the annex's 1.3 g threshold.
+    static constexpr double knock_acceleration = 2 * 981.0;
+
+    // Builds the arena's world; `seed` seeds every random draw (wheel and IR
+    // noise).
+    EnkiWorld(const Arena &arena, uint32_t seed);
+    ~EnkiWorld();
+    EnkiWorld(const EnkiWorld &) = delete;
+    EnkiWorld &operator=(const EnkiWorld &) = delete;
+
+    size_t robot_count() const;
+    const Arena &arena() const
+    {
+        return arena_;
+    }
+
+    // What robot `index`'s board sees; valid while this world lives.
+    const host_world *world_of(size_t index) const;
+
+    // Sets each robot's wheel speeds from the motor steps its firmware made
+    // since the last step, then advances the physics and sensors by
+    // step_seconds, and knocks robots that stayed long enough on shock
+    // areas.
+    void step();
+
+    // Steps done since the start.
+    uint64_t steps() const
+    {
+        return steps_;
+    }
+
+    Pose pose(size_t index) const;
+    // Moves robot `index` (tests); its sensors see the change after a step.
+    void place(size_t index, const Pose &pose);
+    EnkiEpuck &robot(size_t index);
+    // Wheel speeds (cm/s) given to Enki at the last step.
+    double left_wheel_speed(size_t index) const;
+    double right_wheel_speed(size_t index) const;
+
+    // The colours robot `index`'s modelled camera sees on `row` (0 = top of
+    // the 120-row window), 120 pixels from left to right, into `pixels`.
+    void camera_row(size_t index, unsigned row, Color *pixels) const;
+
+    struct RobotState; // per robot: motor phases, emitters, camera registers
+
+  private:
+    double shock_period_at(const Enki::Point &point) const;
+    // Works out the robot's ADC readings from the world after a step.
+    void update_readings(RobotState &state);
+
+    Arena arena_;
+    std::unique_ptr<Enki::World> world_;
+    // Robots then obstacles, constructed in place in one block.
+    void *objects_block_ = nullptr;
+    std::vector<EnkiEpuck *> robots_;
+    std::vector<Enki::PhysicalObject *> obstacles_;
+    std::vector<std::unique_ptr<RobotState>> states_;
+    uint64_t steps_ = 0;
+};
+
+// Converts an Enki IR value (0..3731, as a real sensor's reflected light)
+// to the phototransistor's ADC reading with its emitter lit; `ambient` is
+// the reading with the emitter off.
+uint16_t proximity_lit_reading(double enki_value, uint16_t ambient);
+
+// The accelerometer's ADC reading on `axis` (0 X, 1 Y, 2 Z) for an
+// acceleration `forward`, `leftward` (cm/s², robot frame) of an upright robot.
+uint16_t accelerometer_reading(unsigned axis, double forward, double leftward);
+
+} // namespace aseba::arena
