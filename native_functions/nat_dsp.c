@@ -17,25 +17,12 @@
 
 #include "nat_dsp.h"
 #include "nat_dsp_internal.h"
+#include "nat_internal.h"
 
-// Parameter sizes: > 0 fixed, < 0 template id (protocol.md §5.5).
-#define TEMPLATE_N  -1
-#define TEMPLATE_M  -2
+// Parameter sizes beyond nat_internal.h's.
 #define TEMPLATE_P  -3
-#define SCALAR      1
 #define BIQUAD_SIZE 5
 #define STATE_SIZE  4
-
-#define COUNT_OF(array) ((uint8_t)(sizeof(array) / sizeof((array)[0])))
-
-// One description: its parameter array is `<identifier>_parameters`.
-#define NATIVE(identifier, name, description, stack_words)                                         \
-    const vm_native nat_##identifier = { name,                                                     \
-                                         description,                                              \
-                                         nat_##identifier##_function,                              \
-                                         stack_words,                                              \
-                                         COUNT_OF(identifier##_parameters),                        \
-                                         identifier##_parameters }
 
 static const vm_native_parameter dsp_fft_parameters[] = { { TEMPLATE_N, "real" },
                                                           { TEMPLATE_N, "imag" } };

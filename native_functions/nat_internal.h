@@ -49,6 +49,25 @@ void nat_elementwise_unary(vm_state *vm, const int16_t *arguments, nat_unary_ope
 // in increasing i.
 void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_operation operation);
 
+// --- description records -----------------------------------------------------
+
+// Parameter sizes: > 0 fixed, < 0 template id (protocol.md §5.5).
+#define TEMPLATE_N -1
+#define TEMPLATE_M -2
+#define SCALAR     1
+
+#define COUNT_OF(array) ((uint8_t)(sizeof(array) / sizeof((array)[0])))
+
+// One native's record: its parameter array is `<identifier>_parameters` and
+// its function `nat_<identifier>_function`.
+#define NATIVE(identifier, name, description, stack_words)                                         \
+    const vm_native nat_##identifier = { name,                                                     \
+                                         description,                                              \
+                                         nat_##identifier##_function,                              \
+                                         stack_words,                                              \
+                                         COUNT_OF(identifier##_parameters),                        \
+                                         identifier##_parameters }
+
 // nat_math.c
 void nat_math_copy_function(vm_state *vm, const int16_t *arguments);
 void nat_math_fill_function(vm_state *vm, const int16_t *arguments);

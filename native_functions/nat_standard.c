@@ -9,22 +9,6 @@
 #include "nat_internal.h"
 #include "nat_standard.h"
 
-// Parameter sizes: > 0 fixed, < 0 template id (protocol.md §5.5).
-#define TEMPLATE_N -1
-#define TEMPLATE_M -2
-#define SCALAR     1
-
-#define COUNT_OF(array) ((uint8_t)(sizeof(array) / sizeof((array)[0])))
-
-// One description: its parameter array is `<identifier>_parameters`.
-#define NATIVE(identifier, name, description, stack_words)                                         \
-    const vm_native nat_##identifier = { name,                                                     \
-                                         description,                                              \
-                                         nat_##identifier##_function,                              \
-                                         stack_words,                                              \
-                                         COUNT_OF(identifier##_parameters),                        \
-                                         identifier##_parameters }
-
 static const vm_native_parameter math_copy_parameters[] = { { TEMPLATE_N, "dest" },
                                                             { TEMPLATE_N, "src" } };
 NATIVE(math_copy, "math.copy", "copies src to dest element by element", 3);

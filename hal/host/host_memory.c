@@ -78,21 +78,29 @@ uint32_t hal_flash_read(hal_board *board, uint32_t address)
     return board->flash[address / WORD_ADDRESS_STEP];
 }
 
+// Starts a row operation and says how many instructions of the row it
+// reaches: all of them, half when the power is cut during it, none when it
+// fails before starting (*ok false in the last two cases).
+static uint16_t row_reach(hal_board *board, uint32_t row_address, bool *ok)
+{
+    bool cut;
+
+    *ok = false;
+    if (!valid_row(row_address))
+        return 0;
+    *ok = start_operation(board, &cut);
+    if (cut)
+        return HAL_FLASH_ROW_INSTRUCTIONS / 2u;
+    return *ok ? HAL_FLASH_ROW_INSTRUCTIONS : 0;
+}
+
 bool hal_flash_erase_row(hal_board *board, uint32_t row_address)
 {
     uint32_t first = row_address / WORD_ADDRESS_STEP;
-    uint16_t count = HAL_FLASH_ROW_INSTRUCTIONS;
-    uint16_t i;
-    bool cut;
     bool ok;
+    uint16_t count = row_reach(board, row_address, &ok);
+    uint16_t i;
 
-    if (!valid_row(row_address))
-        return false;
-    ok = start_operation(board, &cut);
-    if (!ok && !cut)
-        return false;
-    if (cut)
-        count = HAL_FLASH_ROW_INSTRUCTIONS / 2u;
     for (i = 0; i < count; i++)
         board->flash[first + i] = HAL_FLASH_ERASED;
     return ok;
@@ -101,18 +109,10 @@ bool hal_flash_erase_row(hal_board *board, uint32_t row_address)
 bool hal_flash_write_row(hal_board *board, uint32_t row_address, const uint32_t *instructions)
 {
     uint32_t first = row_address / WORD_ADDRESS_STEP;
-    uint16_t count = HAL_FLASH_ROW_INSTRUCTIONS;
-    uint16_t i;
-    bool cut;
     bool ok;
+    uint16_t count = row_reach(board, row_address, &ok);
+    uint16_t i;
 
-    if (!valid_row(row_address))
-        return false;
-    ok = start_operation(board, &cut);
-    if (!ok && !cut)
-        return false;
-    if (cut)
-        count = HAL_FLASH_ROW_INSTRUCTIONS / 2u;
     for (i = 0; i < count; i++)
         board->flash[first + i] &= instructions[i] & INSTRUCTION_MASK;
     return ok;
