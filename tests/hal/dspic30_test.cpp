@@ -241,7 +241,7 @@ TEST_F(Dspic30, ScansInterruptAt16384HzLikeTheLibrary)
 {
     struct Scan {
         uint16_t mask;
-        uint16_t library_adcs; // §2.3, advanced scan driver
+        uint16_t gctronic_adcs; // §2.3, advanced scan driver
     };
     for (Scan scan : { Scan{ 0x001C, 39 }, Scan{ 0x111C, 23 }, Scan{ 0x00FC, 19 } }) {
         ASSERT_TRUE(hal_adc_scan_start(&board, scan.mask, nullptr, nullptr));
@@ -251,7 +251,7 @@ TEST_F(Dspic30, ScansInterruptAt16384HzLikeTheLibrary)
         EXPECT_EQ(chip.sfr(ADCON2), 0x0400 | ((channels - 1) << 2)); // CSCNA, SMPI
         EXPECT_EQ(field(chip.sfr(ADCON3), 12, 8), 1);                // SAMC
         uint16_t adcs = field(chip.sfr(ADCON3), 5, 0);
-        EXPECT_EQ(adcs, scan.library_adcs);
+        EXPECT_EQ(adcs, scan.gctronic_adcs);
         double scan_seconds = channels * (1 + 14) * ((adcs + 1) / 2.0) / FCY;
         EXPECT_DOUBLE_EQ(1 / scan_seconds, 16384.0);
         EXPECT_NE(chip.sfr(IEC0) & 0x0800, 0);
