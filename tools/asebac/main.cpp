@@ -12,10 +12,9 @@
 #include <vector>
 
 #include "run.hpp"
-#include "tools/compiler/aesl.hpp"
 #include "tools/compiler/compiler.hpp"
 #include "tools/compiler/disassembler.hpp"
-#include "tools/compiler/error_format.hpp"
+#include "tools/compiler/program_file.hpp"
 #include "tools/compiler/target_json.hpp"
 #include "tools/compiler/target_presets.hpp"
 
@@ -171,12 +170,6 @@ TargetDescription load_target(const std::string &name)
     return read.target;
 }
 
-bool ends_with(const std::string &text, const std::string &suffix)
-{
-    return text.size() >= suffix.size() &&
-           text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
 // An --event value split into name and what follows the colon.
 std::pair<std::string, std::string> split_event(const std::string &option)
 {
@@ -255,32 +248,14 @@ int main(int argc, char **argv)
 {
     Options options = parse_options(argc, argv);
     TargetDescription target = load_target(options.target);
-    std::string text = read_input(options.input);
-    std::string file_name = options.input == "-" ? "<stdin>" : options.input;
-
-    CommonDefinitions definitions;
-    std::string source = text;
-    unsigned line_offset = 0;
-    unsigned column_offset = 0;
-    if (ends_with(options.input, ".aesl")) {
-        AeslReadResult project = read_aesl(text);
-        if (!project.ok) {
-            std::cerr << file_name << ":" << project.error_line << ": error: " << project.error
-                      << "\n";
-            return EXIT_USAGE;
-        }
-        definitions = project.project.definitions;
-        const AeslNode *chosen = nullptr;
-        for (const auto &node : project.project.nodes)
-            if (chosen == nullptr && (options.node.empty() || node.name == options.node))
-                chosen = &node;
-        if (chosen == nullptr)
-            usage_error(options.node.empty() ? "the project has no node"
-                                             : "the project has no node " + options.node);
-        source = chosen->source;
-        line_offset = chosen->first_line - 1;
-        column_offset = chosen->first_column;
+    ProgramFile program;
+    try {
+        program = read_program_file(options.input, options.node);
+    } catch (const std::runtime_error &error) {
+        std::cerr << error.what() << "\n";
+        return EXIT_USAGE;
     }
+    CommonDefinitions &definitions = program.definitions;
 
     std::vector<EventToSend> to_send;
     for (const auto &option : options.event_options) {
@@ -306,9 +281,10 @@ int main(int argc, char **argv)
         definitions.constants.push_back({ option.substr(0, equal), static_cast<int16_t>(*value) });
     }
 
-    CompileResult result = compile(source, target, definitions);
+    std::string error_text;
+    CompileResult result = compile_program_file(program, target, error_text);
     if (!result.ok) {
-        std::cerr << format_error(file_name, source, result.error, line_offset, column_offset);
+        std::cerr << error_text;
         return 1;
     }
 
@@ -322,7 +298,7 @@ int main(int argc, char **argv)
     if (!options.output.empty())
         write_bytecode(options, result.bytecode);
     if (options.listing)
-        std::cout << listing(result.bytecode, result.line_of_word, source);
+        std::cout << listing(result.bytecode, result.line_of_word, program.source);
     if (options.variables) {
         std::printf("%-24s %7s %5s\n", "variable", "address", "size");
         for (const auto &variable : result.variables)
@@ -331,8 +307,8 @@ int main(int argc, char **argv)
           "%u of %u words used by variables\n", result.allocated_variables, target.variables_size);
     }
     if (options.output.empty() && !options.listing && !options.variables)
-        std::cout << file_name << ": " << result.bytecode.size() << " of " << target.bytecode_size
-                  << " words of bytecode, " << result.allocated_variables << " of "
-                  << target.variables_size << " words of variables\n";
+        std::cout << program.file_name << ": " << result.bytecode.size() << " of "
+                  << target.bytecode_size << " words of bytecode, " << result.allocated_variables
+                  << " of " << target.variables_size << " words of variables\n";
     return 0;
 }
