@@ -41,7 +41,9 @@ bool boot_application_valid(hal_board *board, uint32_t *entry)
         return false;
     if (end <= BOOT_CHECKED_START || end > BOOT_DESCRIPTOR_ADDRESS || end % PC_UNITS_PER_WORD != 0)
         return false;
-    if (start_address >= end || start_address % PC_UNITS_PER_WORD != 0 || crc > CRC16_MASK)
+    if (start_address < BOOT_APPLICATION_START || start_address >= end ||
+        start_address >= BOOT_ENTRY_LIMIT || start_address % PC_UNITS_PER_WORD != 0 ||
+        crc > CRC16_MASK)
         return false;
     if (boot_flash_crc(board, BOOT_CHECKED_START, end) != (uint16_t)crc)
         return false;

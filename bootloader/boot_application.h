@@ -1,20 +1,23 @@
 // The application as the bootloader sees it: the flash rows it may write,
 // and the descriptor that says whether a complete application is there.
 //
-// The application region is PC 0x000000 up to the bytecode store. Its last
-// row holds the descriptor, which the host tool (tools/flash) adds to the
-// image; its instructions are:
+// The application region is BOOT_APPLICATION_START (0x100) up to the
+// bytecode store (flash_layout.h). It starts with the application's GOTO
+// table, which the bootloader image's vectors lead to; its last row holds
+// the descriptor, which the host tool (tools/flash) adds to the image; its
+// instructions are:
 //
 //   0  BOOT_DESCRIPTOR_MAGIC
-//   1  entry: the PC address the application starts at (its reset GOTO)
+//   1  entry: the PC address the bootloader jumps to, normally
+//      BOOT_APPLICATION_ENTRY (the table's reset slot); below
+//      BOOT_ENTRY_LIMIT so that a 16-bit computed jump reaches it
 //   2  end: first PC address after the application's code (even,
-//      BOOT_CHECKED_START < end <= BOOT_DESCRIPTOR_ADDRESS)
+//      BOOT_APPLICATION_START < end <= BOOT_DESCRIPTOR_ADDRESS)
 //   3  CRC-16/XMODEM (node_crc16, seed 0) of every instruction from
-//      BOOT_CHECKED_START to end, 3 bytes each, low byte first
+//      BOOT_APPLICATION_START to end, 3 bytes each, low byte first
 //
-// The reset vector (PC 0 and 2) is not checked: the bootloader keeps the one
-// already in flash, which leads to the bootloader (directly or through the
-// factory Tiny Bootloader's trampoline).
+// Rows 0-3 (reset GOTO, IVT, AIVT) are the bootloader image's: no page of
+// the application covers them, so no flashing ever erases the reset vector.
 
 #ifndef BOOT_APPLICATION_H
 #define BOOT_APPLICATION_H
@@ -23,12 +26,13 @@
 #include <stdint.h>
 
 #include "bootloader/bytecode_store.h"
+#include "bootloader/flash_layout.h"
 #include "hal/hal.h"
 
-#define BOOT_APPLICATION_END    STORE_REGION_BASE // first PC address the bootloader never writes
 #define BOOT_DESCRIPTOR_ADDRESS (BOOT_APPLICATION_END - HAL_FLASH_ROW_SPAN)
-#define BOOT_RESET_VECTOR_WORDS 2u   // GOTO: two instructions at PC 0
-#define BOOT_CHECKED_START      0x4u // the first PC address after the reset vector
+#define BOOT_CHECKED_START      BOOT_APPLICATION_START // the CRC covers the whole application
+#define BOOT_APPLICATION_ENTRY  BOOT_TABLE_RESET_SLOT  // the entry unless the image says otherwise
+#define BOOT_ENTRY_LIMIT        0x10000ul              // entries stay where a 16-bit jump reaches
 #define BOOT_DESCRIPTOR_MAGIC   0xA5EB01ul
 #define BOOT_DESCRIPTOR_WORDS   4u // magic, entry, end, crc
 

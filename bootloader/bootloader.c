@@ -103,15 +103,9 @@ static bool row_holds(bootloader *loader, uint32_t address)
 static bool program_page(bootloader *loader)
 {
     uint32_t address = page_address(loader->page);
-    uint16_t i;
 
-    if (address == 0) { // keep the reset vector that leads to the bootloader
-        for (i = 0; i < BOOT_RESET_VECTOR_WORDS; i++)
-            loader->row[i] = hal_flash_read(loader->board, (uint32_t)i * PC_UNITS_PER_WORD);
-    }
-    // A row that already holds the page is left alone: re-flashing a similar
-    // image wears less and, when the vectors did not move, never erases row
-    // 0 with the reset vector.
+    // A row that already holds the page is left alone: re-flashing a
+    // similar image wears less and is quicker.
     if (row_holds(loader, address))
         return true;
     if (!hal_flash_erase_row(loader->board, address) ||
@@ -202,7 +196,6 @@ static bool handle_frame(bootloader *loader)
 {
     uint16_t length = get_u16(loader->header);
     uint16_t type = get_u16(loader->header + 4);
-    uint32_t entry;
 
     if (type != BOOT_MESSAGE_RESET && type != BOOT_MESSAGE_READ_PAGE &&
         type != BOOT_MESSAGE_WRITE_PAGE && type != BOOT_MESSAGE_PAGE_DATA_WRITE &&
@@ -214,7 +207,7 @@ static bool handle_frame(bootloader *loader)
     switch (type) {
     case BOOT_MESSAGE_RESET:
         send_ack(loader, BOOT_ACK_SUCCESS);
-        if (boot_application_valid(loader->board, &entry))
+        if (boot_application_valid(loader->board, &loader->application_entry))
             return true;
         send_description(loader); // no valid application: still here
         break;
@@ -255,6 +248,7 @@ void boot_start(bootloader *loader, hal_board *board, uint16_t node_id)
     loader->node_id = node_id;
     loader->started_ms = hal_milliseconds(board);
     loader->waiting = true;
+    loader->application_entry = 0;
     loader->header_fill = 0;
     loader->payload_fill = 0;
     loader->last_byte_ms = loader->started_ms;
@@ -270,7 +264,6 @@ boot_status boot_poll(bootloader *loader)
     uint16_t count;
     uint16_t i;
     uint32_t now = hal_milliseconds(loader->board);
-    uint32_t entry;
 
     if (loader->header_fill > 0 && now - loader->last_byte_ms > BOOT_FRAME_GAP_MS) {
         loader->header_fill = 0; // a sender gave up in the middle of a frame
@@ -285,7 +278,7 @@ boot_status boot_poll(bootloader *loader)
     }
     if (loader->waiting && now - loader->started_ms >= BOOT_WAIT_MS) {
         loader->waiting = false; // decide once: an invalid application keeps us here
-        if (boot_application_valid(loader->board, &entry))
+        if (boot_application_valid(loader->board, &loader->application_entry))
             return BOOT_START_APPLICATION;
     }
     return BOOT_STAY;

@@ -8,12 +8,12 @@
 // PC / 0x40, and each 4-byte PAGE_DATA_WRITE chunk is one instruction.
 //
 // Only the pages of the application region (boot_application.h) can be
-// written or read; the bytecode store and the bootloaders above it are
-// refused, so the bootloader never erases itself. Writing page 0 keeps the
-// reset vector already in flash; a row that already holds its page is not
-// rewritten. Every page write but the descriptor's first
-// erases the descriptor, so an interrupted flashing leaves no valid
-// application and the bootloader stays.
+// written or read; rows 0-3 (reset GOTO and vector tables), the bytecode
+// store and the bootloaders above it are refused, so the bootloader never
+// erases itself or the way to it. A row that already holds its page is not
+// rewritten. Every page write but the descriptor's first erases the
+// descriptor, so an interrupted flashing leaves no valid application and
+// the bootloader stays.
 //
 // Usage: boot_start once after reset, then boot_poll in a loop until it
 // says to start the application (the chip then jumps to the entry address
@@ -30,8 +30,9 @@
 
 #define BOOT_BYTES_PER_INSTRUCTION 4u // in HEX files and PAGE_DATA_WRITE chunks
 #define BOOT_PAGE_BYTES            (HAL_FLASH_ROW_INSTRUCTIONS * BOOT_BYTES_PER_INSTRUCTION)
-#define BOOT_PAGES_START           0u
-#define BOOT_PAGES_COUNT           ((uint16_t)(BOOT_APPLICATION_END / HAL_FLASH_ROW_SPAN))
+#define BOOT_PAGES_START           ((uint16_t)(BOOT_APPLICATION_START / HAL_FLASH_ROW_SPAN))
+#define BOOT_PAGES_COUNT                                                                           \
+    ((uint16_t)((BOOT_APPLICATION_END - BOOT_APPLICATION_START) / HAL_FLASH_ROW_SPAN))
 
 // How long after reset the bootloader waits to be addressed before it starts
 // a valid application, and the silence that abandons a half-received frame.
@@ -67,7 +68,8 @@ typedef struct bootloader {
     hal_board *board;
     uint16_t node_id;
     uint32_t started_ms;
-    bool waiting; // no host has addressed us yet and BOOT_WAIT_MS has not passed
+    bool waiting;               // no host has addressed us yet and BOOT_WAIT_MS has not passed
+    uint32_t application_entry; // set when boot_poll returns BOOT_START_APPLICATION
 
     // The frame being received.
     uint8_t header[BOOT_FRAME_HEADER_BYTES];
@@ -89,7 +91,8 @@ void boot_start(bootloader *loader, hal_board *board, uint16_t node_id);
 // Handles every byte the link has received; returns BOOT_START_APPLICATION
 // after an acknowledged BOOTLOADER_RESET or, when no host addressed the
 // bootloader, BOOT_WAIT_MS after boot_start, but only when the application
-// is valid.
+// is valid (boot_application_valid), its entry then in
+// loader->application_entry.
 boot_status boot_poll(bootloader *loader);
 
 #endif

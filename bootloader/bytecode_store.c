@@ -3,6 +3,7 @@
 
 #include "bootloader/bytecode_store.h"
 
+#include "firmware/epuck_config.h"
 #include "vm/node.h"
 
 #define BYTE_BITS            8u
@@ -261,4 +262,16 @@ bool epuck_store_load_settings(hal_board *board,
 
     epuck_store_settings_place(&place);
     return store_load(board, &place, settings, capacity, count);
+}
+
+uint16_t epuck_store_node_id(hal_board *board, uint16_t selector_position)
+{
+    uint16_t settings[EPUCK_STORE_SETTINGS_MAX_WORDS];
+    uint16_t count;
+
+    if (epuck_store_load_settings(board, settings, EPUCK_STORE_SETTINGS_MAX_WORDS, &count) &&
+        count > EPUCK_SETTINGS_NODE_ID && settings[EPUCK_SETTINGS_NODE_ID] >= 1u &&
+        settings[EPUCK_SETTINGS_NODE_ID] <= EPUCK_SETTINGS_NODE_ID_MAX)
+        return settings[EPUCK_SETTINGS_NODE_ID];
+    return (uint16_t)((selector_position & EPUCK_SELECTOR_NODE_MASK) + 1u);
 }

@@ -24,11 +24,10 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "bootloader/flash_layout.h"
 #include "hal/hal.h"
 
-// The linker's bytecode_store region (linker/epuck-app.gld).
-#define STORE_REGION_BASE 0x016F00ul
-#define STORE_REGION_ROWS 64u
+// The region (STORE_REGION_BASE, STORE_REGION_ROWS) is in flash_layout.h.
 
 #define STORE_SLOT_COUNT            2u
 #define STORE_BYTES_PER_INSTRUCTION 3u // the 24 bits of an instruction
@@ -59,6 +58,13 @@
     (EPUCK_STORE_SETTINGS_SLOT_0 + EPUCK_STORE_SETTINGS_SLOT_ROWS * HAL_FLASH_ROW_SPAN)
 #define EPUCK_STORE_ROWS_USED                                                                      \
     (STORE_SLOT_COUNT * (EPUCK_STORE_BYTECODE_SLOT_ROWS + EPUCK_STORE_SETTINGS_SLOT_ROWS))
+typedef char epuck_store_fits_its_region[EPUCK_STORE_ROWS_USED <= STORE_REGION_ROWS ? 1 : -1];
+
+// The settings record: word EPUCK_SETTINGS_NODE_ID is the node id the robot
+// answers to (a valid id is 1..EPUCK_SETTINGS_NODE_ID_MAX); the words after
+// it are for calibration.
+#define EPUCK_SETTINGS_NODE_ID     0u
+#define EPUCK_SETTINGS_NODE_ID_MAX 0xFFFEu // 0xFFFF is the broadcast address
 
 // Where one kind of record lives.
 typedef struct store_place {
@@ -123,5 +129,10 @@ bool epuck_store_load_settings(hal_board *board,
                                uint16_t *settings,
                                uint16_t capacity,
                                uint16_t *count);
+
+// The node id of the robot, the same for the bootloader and the
+// application: the one in the stored settings when they hold a valid one,
+// else (selector_position & EPUCK_SELECTOR_NODE_MASK) + 1 (hardware §6.6).
+uint16_t epuck_store_node_id(hal_board *board, uint16_t selector_position);
 
 #endif

@@ -106,7 +106,7 @@ void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t no
 
     firmware->board = board;
     if (node_id == 0)
-        node_id = (uint16_t)((epuck_selector_read(board) & EPUCK_SELECTOR_NODE_MASK) + 1u);
+        node_id = epuck_store_node_id(board, epuck_selector_read(board));
     start_drivers(firmware, board);
     memory.bytecode = firmware->bytecode;
     memory.bytecode_size = EPUCK_BYTECODE_WORDS;

@@ -66,7 +66,8 @@ typedef struct epuck_firmware {
 } epuck_firmware;
 
 // Starts the drivers on `board` and the node as `node_id` (1..0xFFFE), or,
-// when `node_id` is 0, as (selector & 7) + 1. The proximity sensors and the
+// when `node_id` is 0, as the bootloader does (epuck_store_node_id: the
+// stored settings' id, else (selector & 7) + 1). The proximity sensors and the
 // accelerometer calibrate during the first second and a half: the robot
 // should stand still (their values are uncalibrated until then).
 void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t node_id);

@@ -72,8 +72,36 @@ image() { # name compiler size-tool flags...
                      name == "avr" ? " (avr copies it to RAM)" : "" }'
 }
 
+# A proxy of the Aseba bootloader image's size (linker/epuck-bootloader.gld
+# gives it 2048 instructions): its program, the bootloader core, the store
+# (for the settings), the HAL's clock, pins, UART and flash against
+# simulated registers (tests/cross/bootloader_image.c), linked with unused
+# functions dropped. bootloader/README.md turns these bytes into dsPIC
+# instructions.
+bootloader_image() { # name compiler size-tool flags...
+    local name=$1 compiler=$2 size_tool=$3
+    shift 3
+    local elf=$build/cross-$name/bootloader-image.elf
+    "$compiler" "${flags[@]}" "$@" -DDSPIC30_SIMULATED_REGISTERS -Wl,--gc-sections \
+        bootloader/bootloader_main_dspic30.c bootloader/bootloader.c \
+        bootloader/boot_application.c bootloader/bytecode_store.c \
+        hal/dspic30/dspic30_clock.c hal/dspic30/dspic30_gpio.c hal/dspic30/dspic30_uart.c \
+        hal/dspic30/dspic30_nvm.c drivers/epuck/epuck_selector.c vm/node_description.c \
+        tests/cross/bootloader_image.c -o "$elf"
+    "$size_tool" -A "$elf" | awk '
+        $1 ~ /^\.(text|init|fini|vectors)/ { code += $2 }
+        $1 ~ /^\.rodata/ { constant += $2 }
+        $1 ~ /^\.data$/ { data += $2 }
+        $1 ~ /^\.bss$/ { bss += $2 }
+        END { printf "  linked bootloader image: %d bytes of code, %d of constant data, %d of initialised data, %d of RAM\n",
+                     code, constant, data, data + bss }'
+}
+
 check avr avr-gcc avr-size -mmcu=atmega1284p
 image avr avr-gcc avr-size -mmcu=atmega1284p
+bootloader_image avr avr-gcc avr-size -mmcu=atmega1284p
 check arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb
 image arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb --specs=nano.specs \
     --specs=nosys.specs
+bootloader_image arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb \
+    --specs=nano.specs --specs=nosys.specs

@@ -53,6 +53,10 @@ void dspic30_timers_init(hal_board *board);
 void dspic30_adc_init(hal_board *board);
 void dspic30_i2c_init(hal_board *board);
 
+// Waits until UART1 has sent every byte given to hal_link_send (the
+// transmit shift register is empty).
+void dspic30_uart_wait_sent(hal_board *board);
+
 // The interrupt handlers; each clears its own flag.
 void dspic30_on_clock_tick(hal_board *board);             // Timer1
 void dspic30_on_uart1_receive(hal_board *board);          // U1RX

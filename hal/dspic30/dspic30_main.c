@@ -1,7 +1,11 @@
-// The dsPIC build's entry point: the single static board and firmware, and
-// the chip's interrupt vectors, each forwarding to the board's handler.
+// The dsPIC application's entry point: the single static board and
+// firmware, and the interrupt handlers, each forwarding to the board's
+// handler (linker/epuck-app.gld puts them in the application's GOTO table,
+// where the bootloader image's vectors lead).
 // (The only mutable file-scope state of the firmware image.)
 
+#include "bootloader/bytecode_store.h"
+#include "drivers/epuck/epuck_selector.h"
 #include "dspic30_board.h"
 #include "dspic30_registers.h"
 #include "firmware/epuck_firmware.h"
@@ -18,8 +22,10 @@ int main(void)
         hal_reset(&board);
     }
     dspic30_board_init(&board);
-    // Node id 0: the firmware takes it from the selector.
-    epuck_firmware_init(&firmware, &board, 0);
+    // The node id the bootloader answered as: the stored settings' or the
+    // selector's.
+    epuck_firmware_init(
+      &firmware, &board, epuck_store_node_id(&board, epuck_selector_read(&board)));
     for (;;) {
         if (!epuck_firmware_poll(&firmware))
             hal_idle(&board);

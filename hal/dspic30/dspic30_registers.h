@@ -40,8 +40,10 @@
 // --- interrupt controller (§1.7, §2.6) --------------------------------------------
 #define DSPIC30_IFS0 0x0084u
 #define DSPIC30_IFS1 0x0086u
+#define DSPIC30_IFS2 0x0088u
 #define DSPIC30_IEC0 0x008Cu
 #define DSPIC30_IEC1 0x008Eu
+#define DSPIC30_IEC2 0x0090u
 #define DSPIC30_IPC0 0x0094u
 #define DSPIC30_IPC1 0x0096u
 #define DSPIC30_IPC2 0x0098u
@@ -189,6 +191,7 @@ uint16_t dspic30_simulated_table_read_low(uint16_t offset);
 uint16_t dspic30_simulated_table_read_high(uint16_t offset);
 void dspic30_simulated_nvm_unlock_and_start(void);
 void dspic30_simulated_special(const char *instruction);
+void dspic30_simulated_jump(uint16_t address);
 
 static inline uint16_t dspic30_read(uint16_t address)
 {
@@ -229,6 +232,11 @@ static inline void dspic30_idle_instruction(void)
 static inline void dspic30_reset_instruction(void)
 {
     dspic30_simulated_special("reset");
+}
+
+static inline void dspic30_jump(uint16_t address)
+{
+    dspic30_simulated_jump(address);
 }
 
 // Interrupt handlers and configuration words are plain on the host.
@@ -279,6 +287,18 @@ static inline void dspic30_idle_instruction(void)
 static inline void dspic30_reset_instruction(void)
 {
     __asm__ volatile("reset");
+}
+
+// Continues at PC `address` (below 0x10000), never to return. XC16's
+// function pointers are 16 bits (fact sheet §5.2, [XC16] C guide "Function
+// Pointers"), so a pointer holding `address` calls it directly, without a
+// handle. The return address this pushes is dropped when the code there
+// (an application's start-up) sets the stack pointer again.
+// ⚠ Not yet run on a robot.
+typedef void (*dspic30_code_address)(void);
+static inline void dspic30_jump(uint16_t address)
+{
+    ((dspic30_code_address)address)();
 }
 
 // auto_psv: handlers may read constants through the PSV window (§5.3).

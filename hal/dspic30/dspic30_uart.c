@@ -79,3 +79,10 @@ void hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)
         dspic30_write(DSPIC30_U1TXREG, bytes[i]);
     }
 }
+
+void dspic30_uart_wait_sent(hal_board *board)
+{
+    (void)board;
+    while ((dspic30_read(DSPIC30_U1STA) & DSPIC30_USTA_TRMT) == 0)
+        ;
+}

@@ -1,12 +1,23 @@
-# The dsPIC30F6014A build of the e-puck firmware image, with Microchip XC16:
+# The dsPIC30F6014A build of the e-puck images, with Microchip XC16:
 #
 #   make dspic30                 (or: make TARGET=dspic30)
 #   make dspic30 XC16_DIR=/opt/microchip/xc16/v2.10/bin
 #
-# gives build/dspic30/epuck-aseba.hex (and .elf, .map). It compiles the VM,
-# the natives, the firmware, this HAL and the e-puck drivers with the
-# linker script linker/epuck-app.gld. `make dspic30-check` compiles every
-# hal/dspic30 file with avr-gcc (16-bit int) against the simulated register
+# links two programs with XC16 and combines them with the host tool
+# epuck-image (tools/flash), in build/dspic30/:
+#
+#   epuck-aseba-application.elf/.hex/.map  the VM, natives, firmware, this HAL
+#       and the e-puck drivers, linked with linker/epuck-app.gld
+#   epuck-aseba-bootloader.elf/.hex/.map   bootloader/ (bootloader_main_dspic30.c)
+#       with the HAL's clock, pins, UART and flash, linked with
+#       linker/epuck-bootloader.gld
+#   epuck-aseba.hex          the application and its descriptor: what
+#                            `asebacmd whex` or the console's flash sends
+#   epuck-aseba-factory.hex  bootloader + application + descriptor: the first
+#                            installation (factory Tiny Bootloader, programmer)
+#
+# `make dspic30-check` compiles every hal/dspic30 file and the bootloader's
+# *_dspic30.c with avr-gcc (16-bit int) against the simulated register
 # header, and runs as part of `make cross-check`.
 
 # XC16's bin folder: the newest installed version unless given.
@@ -17,24 +28,37 @@ XC16_BIN2HEX := $(XC16_DIR)/xc16-bin2hex
 DSPIC30_OUT := $(BUILD)/dspic30
 # native_functions/nat_dsp_dspic30.c, the DSP-engine inner loop of the DSP
 # natives, replaces the portable nat_dsp_kernel.c (same function).
-DSPIC30_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c, \
+DSPIC30_APPLICATION_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c bootloader/%_dspic30.c, \
                      $(sort $(wildcard vm/*.c native_functions/*.c firmware/*.c hal/dspic30/*.c \
                                        drivers/epuck/*.c) bootloader/bytecode_store.c))
-DSPIC30_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_SOURCES))
-DSPIC30_LINKER_SCRIPT := linker/epuck-app.gld
+# The bootloader image: what bootloader_main_dspic30.c reaches. Unused
+# functions are dropped at link time (-ffunction-sections, --gc-sections).
+DSPIC30_BOOTLOADER_SOURCES := $(sort $(wildcard bootloader/*.c) \
+                                hal/dspic30/dspic30_clock.c hal/dspic30/dspic30_gpio.c \
+                                hal/dspic30/dspic30_uart.c hal/dspic30/dspic30_nvm.c \
+                                drivers/epuck/epuck_selector.c vm/node_description.c)
+DSPIC30_APPLICATION_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_APPLICATION_SOURCES))
+DSPIC30_BOOTLOADER_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_BOOTLOADER_SOURCES))
+DSPIC30_APPLICATION_SCRIPT := linker/epuck-app.gld
+DSPIC30_BOOTLOADER_SCRIPT := linker/epuck-bootloader.gld
 # -mcpu names the part; -omf=elf the object format bin2hex reads; the
-# firmware's sizes reach the VM through VM_TARGET_CONFIG.
+# firmware's sizes reach the VM through VM_TARGET_CONFIG; one section per
+# function lets the bootloader's link keep only what it calls.
 DSPIC30_CFLAGS := -mcpu=30F6014A -omf=elf -std=gnu99 -Os -Wall -Wextra -I. -Ivm -Inative_functions \
-                  '-DVM_TARGET_CONFIG="firmware/epuck_config.h"'
-DSPIC30_LDFLAGS := -mcpu=30F6014A -omf=elf \
-                   -Wl,--script=$(DSPIC30_LINKER_SCRIPT),-Map=$(DSPIC30_OUT)/epuck-aseba.map,--report-mem
+                  -ffunction-sections '-DVM_TARGET_CONFIG="firmware/epuck_config.h"'
+DSPIC30_LDFLAGS = -mcpu=30F6014A -omf=elf \
+                  -Wl,--script=$(1),-Map=$(2:.elf=.map),--report-mem$(3)
+# The bootloader's code is above PC 0xFFFF and has no room for a handle
+# table below it (fact sheet §5.2): it takes no function pointers.
+DSPIC30_BOOTLOADER_LDFLAGS := ,--gc-sections,--no-handles
+EPUCK_IMAGE_TOOL := $(BUILD)/host/bin/epuck-image
 
 ifeq ($(TARGET),dspic30)
 .DEFAULT_GOAL := dspic30
 endif
 
 .PHONY: dspic30 dspic30-toolchain dspic30-check
-dspic30: $(DSPIC30_OUT)/epuck-aseba.hex
+dspic30: $(DSPIC30_OUT)/epuck-aseba.hex $(DSPIC30_OUT)/epuck-aseba-factory.hex
 
 dspic30-toolchain:
 	@test -x $(XC16_GCC) || { echo "dspic30: xc16-gcc not found in $(XC16_DIR): install Microchip MPLAB XC16 (microchip.com/xc16) or set XC16_DIR to its bin folder"; exit 1; }
@@ -43,25 +67,42 @@ $(DSPIC30_OUT)/obj/%.o: %.c | dspic30-toolchain
 	@mkdir -p $(@D)
 	$(XC16_GCC) $(DSPIC30_CFLAGS) -MMD -MP -c $< -o $@
 
-$(DSPIC30_OUT)/epuck-aseba.elf: $(DSPIC30_OBJECTS) $(DSPIC30_LINKER_SCRIPT) | dspic30-toolchain
-	$(XC16_GCC) $(DSPIC30_LDFLAGS) $(DSPIC30_OBJECTS) -o $@
+$(DSPIC30_OUT)/epuck-aseba-application.elf: $(DSPIC30_APPLICATION_OBJECTS) \
+                                            $(DSPIC30_APPLICATION_SCRIPT) | dspic30-toolchain
+	$(XC16_GCC) $(call DSPIC30_LDFLAGS,$(DSPIC30_APPLICATION_SCRIPT),$@) \
+	    $(DSPIC30_APPLICATION_OBJECTS) -o $@
+
+$(DSPIC30_OUT)/epuck-aseba-bootloader.elf: $(DSPIC30_BOOTLOADER_OBJECTS) \
+                                           $(DSPIC30_BOOTLOADER_SCRIPT) | dspic30-toolchain
+	$(XC16_GCC) $(call DSPIC30_LDFLAGS,$(DSPIC30_BOOTLOADER_SCRIPT),$@,$(DSPIC30_BOOTLOADER_LDFLAGS)) \
+	    $(DSPIC30_BOOTLOADER_OBJECTS) -o $@
 
 # bin2hex writes the .hex next to the .elf.
-$(DSPIC30_OUT)/epuck-aseba.hex: $(DSPIC30_OUT)/epuck-aseba.elf
+$(DSPIC30_OUT)/%.hex: $(DSPIC30_OUT)/%.elf | dspic30-toolchain
 	$(XC16_BIN2HEX) $< -omf=elf
 
--include $(DSPIC30_OBJECTS:.o=.d)
+# The descriptor, the checks of the bootloader image, and the merge.
+$(DSPIC30_OUT)/epuck-aseba.hex $(DSPIC30_OUT)/epuck-aseba-factory.hex &: \
+  $(DSPIC30_OUT)/epuck-aseba-application.hex $(DSPIC30_OUT)/epuck-aseba-bootloader.hex \
+  $(EPUCK_IMAGE_TOOL) | dspic30-toolchain
+	$(EPUCK_IMAGE_TOOL) $(DSPIC30_OUT)/epuck-aseba-application.hex \
+	    $(DSPIC30_OUT)/epuck-aseba-bootloader.hex \
+	    $(DSPIC30_OUT)/epuck-aseba.hex $(DSPIC30_OUT)/epuck-aseba-factory.hex
 
-# Every hal/dspic30 file compiled where int is 16 bits, warnings as errors.
+-include $(DSPIC30_APPLICATION_OBJECTS:.o=.d) $(DSPIC30_BOOTLOADER_OBJECTS:.o=.d)
+
+# Every hal/dspic30 file and the bootloader's chip program compiled where int
+# is 16 bits, warnings as errors.
+DSPIC30_CHECK_SOURCES := $(wildcard hal/dspic30/*.c bootloader/*_dspic30.c)
 DSPIC30_CHECK_FLAGS := -std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef \
                        -Wpointer-arith -mmcu=atmega1284p -I. -Ivm -Inative_functions \
                        -DDSPIC30_SIMULATED_REGISTERS
 dspic30-check: | $(DEPS_STAMP)
 	@mkdir -p $(BUILD)/cross-dspic30
-	@for source in $(wildcard hal/dspic30/*.c); do \
+	@for source in $(DSPIC30_CHECK_SOURCES); do \
 	    avr-gcc $(DSPIC30_CHECK_FLAGS) -c $$source \
 	        -o $(BUILD)/cross-dspic30/$$(basename $${source%.c}).o || exit 1; \
 	done
-	@echo "== hal/dspic30: $(words $(wildcard hal/dspic30/*.c)) files build with avr-gcc against the simulated registers"
+	@echo "== hal/dspic30, bootloader/*_dspic30.c: $(words $(DSPIC30_CHECK_SOURCES)) files build with avr-gcc against the simulated registers"
 
 cross-check: dspic30-check

@@ -1,7 +1,10 @@
 // The serial bootloader's core (bootloader/bootloader.h) on a host board:
 // a test host speaks the Aseba bootloader messages of protocol.md §6.9,
 // flashes an image read from a HEX file, reads it back, resets into it, and
-// loses power at every row operation of a flashing.
+// loses power at every row operation of a flashing. The expected layout is
+// the one bootloader/README.md's table gives: the application's pages are
+// rows 4 .. (0x16380 / 0x40) - 1; rows 0-3 hold the bootloader image's reset
+// GOTO and vector tables and are never written.
 
 #include <gtest/gtest.h>
 
@@ -26,6 +29,26 @@ constexpr uint16_t host_id = 0;
 // The factory chain (fact sheet §4.3): reset vector = GOTO 0x017F40.
 constexpr uint32_t reset_goto_low = 0x047F40;
 constexpr uint32_t reset_goto_high = 0x000001;
+constexpr uint32_t vector_rows_words = 4 * 32; // rows 0-3
+constexpr uint32_t application_end = 0x16380;  // the bytecode store's first row
+constexpr uint16_t first_page = 0x100 / 0x40;
+constexpr uint16_t page_count = (application_end - 0x100) / 0x40;
+
+// Rows 0-3 as the bootloader image leaves them: the reset GOTO, IVT entry k
+// = 0x104 + 4k (the application's table slot 1 + k), AIVT entries pointing
+// into the bootloader's code.
+uint32_t vector_rows_word(uint32_t index)
+{
+    if (index == 0)
+        return reset_goto_low;
+    if (index == 1)
+        return reset_goto_high;
+    if (index < 2 + 62)
+        return 0x104 + 4 * (index - 2);
+    if (index >= 0x84 / 2 && index < 0x84 / 2 + 62)
+        return 0x16F40 + 2 * (index - 0x84 / 2);
+    return 0xFFFFFF;
+}
 
 struct Frame {
     uint16_t source;
@@ -47,8 +70,8 @@ struct Robot {
     Robot()
     {
         host_board_init(board.get(), &Robot::collect, this);
-        board->flash[0] = reset_goto_low;
-        board->flash[1] = reset_goto_high;
+        for (uint32_t i = 0; i < vector_rows_words; i++)
+            board->flash[i] = vector_rows_word(i);
     }
 
     static void collect(void *context, const uint8_t *bytes, uint16_t count)
@@ -144,7 +167,7 @@ std::vector<aseba::flash::Page> pages_of(const std::string &name)
     std::ifstream file("tests/bootloader/hex/" + name, std::ios::binary);
     std::ostringstream text;
     text << file.rdbuf();
-    auto image = aseba::flash::read_microchip_hex(text.str(), BOOT_DESCRIPTOR_ADDRESS);
+    auto image = aseba::flash::read_microchip_hex(text.str(), application_end - 0x40);
     aseba::flash::add_application_descriptor(image);
     return aseba::flash::make_pages(image);
 }
@@ -205,9 +228,9 @@ void expect_description(Robot &robot)
     auto frames = robot.take_frames();
     ASSERT_EQ(frames.size(), 1u);
     EXPECT_EQ(frames[0].type, 0x8004);
-    // 128-byte pages (32 instructions x 4 hex bytes), pages 0 .. up to the
-    // bytecode store at PC 0x16F00 = page 0x16F00 / 0x40.
-    EXPECT_EQ(frames[0].payload, words({ 128, 0, 0x16F00 / 0x40 }));
+    // 128-byte pages (32 instructions x 4 hex bytes), from row 4 (PC 0x100)
+    // up to the bytecode store.
+    EXPECT_EQ(frames[0].payload, words({ 128, first_page, page_count }));
 }
 
 TEST(Bootloader, SendsItsDescriptionAtStart)
@@ -222,21 +245,20 @@ TEST(Bootloader, FlashesReadsBackAndStartsTheApplication)
     Robot robot;
     robot.start();
     robot.take_frames();
-    auto pages = pages_of("good.hex");
+    auto pages = pages_of("application.hex");
     ASSERT_TRUE(flash(robot, pages));
     for (const auto &page : pages) {
         auto bytes = read_page(robot, page.number);
         std::vector<uint8_t> expected(page.bytes.begin(), page.bytes.end());
-        if (page.number == 0) { // the reset vector stays the bootloader's
-            std::vector<uint8_t> vector{ 0x40, 0x7F, 0x04, 0x00, 0x01, 0x00, 0x00, 0x00 };
-            std::copy(vector.begin(), vector.end(), expected.begin());
-        }
         EXPECT_EQ(bytes, expected) << "page " << page.number;
     }
+    for (uint32_t i = 0; i < vector_rows_words; i++)
+        EXPECT_EQ(robot.board->flash[i], vector_rows_word(i)) << "word " << i;
     uint32_t entry = 0;
     ASSERT_TRUE(boot_application_valid(robot.board.get(), &entry));
-    EXPECT_EQ(entry, 0x200u); // good.hex: GOTO 0x000200
+    EXPECT_EQ(entry, 0x100u); // the reset slot of the application's table
     EXPECT_EQ(robot.send(0x8000, words({ node_id })), BOOT_START_APPLICATION);
+    EXPECT_EQ(robot.loader.application_entry, 0x100u);
     expect_ack(robot, { 0 });
 }
 
@@ -244,17 +266,18 @@ TEST(Bootloader, StartsAValidApplicationAfterTheTimeout)
 {
     Robot first;
     first.start();
-    ASSERT_TRUE(flash(first, pages_of("good.hex")));
+    ASSERT_TRUE(flash(first, pages_of("application.hex")));
     auto robot = first.reboot();
     EXPECT_EQ(robot->advance(BOOT_WAIT_MS - 1), BOOT_STAY);
     EXPECT_EQ(robot->advance(1), BOOT_START_APPLICATION);
+    EXPECT_EQ(robot->loader.application_entry, 0x100u);
 }
 
 TEST(Bootloader, StaysWhenAddressedBeforeTheTimeout)
 {
     Robot first;
     first.start();
-    ASSERT_TRUE(flash(first, pages_of("good.hex")));
+    ASSERT_TRUE(flash(first, pages_of("application.hex")));
     auto robot = first.reboot();
     robot->take_frames();
     robot->send(0xA00E, words({ node_id })); // REBOOT: a host wants the bootloader
@@ -279,9 +302,13 @@ TEST(Bootloader, ADamagedApplicationIsNotStarted)
 {
     Robot robot;
     robot.start();
-    ASSERT_TRUE(flash(robot, pages_of("good.hex")));
+    ASSERT_TRUE(flash(robot, pages_of("application.hex")));
     robot.board->flash[0x200 / 2] ^= 0x10; // one bit of the code
     uint32_t entry = 0;
+    EXPECT_FALSE(boot_application_valid(robot.board.get(), &entry));
+    robot.board->flash[0x200 / 2] ^= 0x10;
+    EXPECT_TRUE(boot_application_valid(robot.board.get(), &entry));
+    robot.board->flash[0x100 / 2] ^= 0x01; // the table's reset slot is checked too
     EXPECT_FALSE(boot_application_valid(robot.board.get(), &entry));
     auto rebooted = robot.reboot();
     EXPECT_EQ(rebooted->advance(2 * BOOT_WAIT_MS), BOOT_STAY);
@@ -294,8 +321,16 @@ TEST(Bootloader, RefusesPagesOutsideTheApplication)
     robot.take_frames();
     auto before =
       std::vector<uint32_t>(std::begin(robot.board->flash), std::end(robot.board->flash));
-    // The bytecode store's first page, the factory bootloader's, beyond flash.
-    for (uint16_t page : { uint16_t(0x16F00 / 0x40), uint16_t(0x17F00 / 0x40), uint16_t(0xFFFF) }) {
+    // Rows 0-3 (reset GOTO, IVT, AIVT), the bytecode store's first page, the
+    // Aseba bootloader's first page, the factory bootloader's, beyond flash.
+    for (uint16_t page : { uint16_t(0),
+                           uint16_t(1),
+                           uint16_t(2),
+                           uint16_t(3),
+                           uint16_t(application_end / 0x40),
+                           uint16_t(0x16F00 / 0x40),
+                           uint16_t(0x17F00 / 0x40),
+                           uint16_t(0xFFFF) }) {
         robot.send(0x8002, words({ node_id, page }));
         expect_ack(robot, { 2, static_cast<uint16_t>(page * 0x40u) });
         robot.send(0x8003, words({ node_id, 0x1111, 0x0011 }));
@@ -362,13 +397,12 @@ uint32_t operations_of_flashing(const Robot &start, const std::vector<aseba::fla
     return robot->board->memory_operations - before;
 }
 
-// How many pages differ from what the robot's flash holds (row 0 without
-// its reset vector, which the bootloader keeps).
+// How many pages differ from what the robot's flash holds.
 std::size_t changed_pages(const Robot &robot, const std::vector<aseba::flash::Page> &pages)
 {
     std::size_t changed = 0;
     for (const auto &page : pages) {
-        for (std::size_t i = page.number == 0 ? 2 : 0; i < 32; i++) {
+        for (std::size_t i = 0; i < 32; i++) {
             uint32_t wanted =
               page.bytes[4 * i] | page.bytes[4 * i + 1] << 8 | page.bytes[4 * i + 2] << 16;
             if (robot.board->flash[page.number * 0x20 + i] != wanted) {
@@ -384,7 +418,7 @@ TEST(Bootloader, ReflashingTheSameImageRewritesOnlyTheDescriptor)
 {
     Robot first;
     first.start();
-    auto pages = pages_of("good.hex");
+    auto pages = pages_of("application.hex");
     ASSERT_TRUE(flash(first, pages));
     auto robot = first.reboot();
     uint32_t before = robot->board->memory_operations;
@@ -398,30 +432,34 @@ TEST(Bootloader, ReflashingTheSameImageRewritesOnlyTheDescriptor)
 
 TEST(Bootloader, APowerCutAtAnyRowOperationLeavesTheBootloaderInCharge)
 {
-    // An old application (good.hex moved to another entry) is on the robot.
-    auto old_pages = pages_of("good.hex");
+    // An old application (another table and code) is on the robot.
+    auto new_pages = pages_of("application.hex");
     Robot start;
     start.start();
     {
-        auto image = aseba::flash::read_microchip_hex(
-          ":020000040000FA\n:080000000003040000000000F1\n:04060000AABBCC00C5\n:00000001FF\n",
-          BOOT_DESCRIPTOR_ADDRESS);
+        aseba::flash::ProgramImage image;
+        image.instructions = { { 0x100, 0x040300 },
+                               { 0x102, 0 },
+                               { 0x104, 0x040302 },
+                               { 0x106, 0 },
+                               { 0x300, 0xAABBCC } };
         aseba::flash::add_application_descriptor(image);
         ASSERT_TRUE(flash(start, aseba::flash::make_pages(image)));
     }
     uint32_t old_entry = 0;
     ASSERT_TRUE(boot_application_valid(start.board.get(), &old_entry));
-    ASSERT_EQ(old_entry, 0x300u);
+    const uint32_t descriptor_end_word = (application_end - 0x40 + 4) / 2;
+    ASSERT_EQ(start.board->flash[descriptor_end_word], 0x302u);
 
-    uint32_t operations = operations_of_flashing(start, old_pages);
+    uint32_t operations = operations_of_flashing(start, new_pages);
     // The descriptor's erase, then an erase and a write per page that
-    // changes (row 0 does: its vectors differ).
-    EXPECT_EQ(operations, 1 + 2 * changed_pages(start, old_pages));
-    const uint32_t row_0_erase = 2;
+    // changes (the table's row among them: its vectors differ).
+    EXPECT_EQ(operations, 1 + 2 * changed_pages(start, new_pages));
+    EXPECT_GE(changed_pages(start, new_pages), 3u);
     for (uint32_t cut = 1; cut <= operations; cut++) {
         auto robot = start.reboot();
         host_board_cut_power_at(robot->board.get(), cut);
-        flash(*robot, old_pages);
+        flash(*robot, new_pages);
         robot->board->powered_off = false;
         auto rebooted = robot->reboot();
         uint32_t entry = 0;
@@ -431,27 +469,56 @@ TEST(Bootloader, APowerCutAtAnyRowOperationLeavesTheBootloaderInCharge)
             EXPECT_FALSE(valid) << "cut at " << cut;
             EXPECT_EQ(status, BOOT_STAY) << "cut at " << cut;
         } else if (valid) { // the cut tore the descriptor's row after its first words
-            EXPECT_EQ(entry, 0x200u);
+            EXPECT_EQ(rebooted->board->flash[descriptor_end_word], 0x5C2u);
         }
-        // The reset vector leads to the bootloader after every cut but one:
-        // a cut during the erase of row 0 (operation 2: after the
-        // descriptor's erase) loses it. This chip has no way around that
-        // window (the factory Tiny Bootloader has it too); see
-        // bootloader/README.md for the remapped-vector fix.
-        if (cut == row_0_erase) {
-            EXPECT_EQ(rebooted->board->flash[0], HAL_FLASH_ERASED);
-        } else {
-            EXPECT_EQ(rebooted->board->flash[0], reset_goto_low) << "cut at " << cut;
-            EXPECT_EQ(rebooted->board->flash[1], reset_goto_high) << "cut at " << cut;
-        }
+        // No cut reaches rows 0-3: the reset GOTO and both vector tables
+        // still lead to the bootloader and the application's table.
+        for (uint32_t i = 0; i < vector_rows_words; i++)
+            ASSERT_EQ(rebooted->board->flash[i], vector_rows_word(i))
+              << "cut at " << cut << ", word " << i;
         // Flashing again after the reboot succeeds.
         auto again = robot->reboot();
         again->take_frames();
-        ASSERT_TRUE(flash(*again, old_pages)) << "cut at " << cut;
+        ASSERT_TRUE(flash(*again, new_pages)) << "cut at " << cut;
         EXPECT_EQ(again->send(0x8000, words({ node_id })), BOOT_START_APPLICATION);
         ASSERT_TRUE(boot_application_valid(again->board.get(), &entry));
-        EXPECT_EQ(entry, 0x200u);
+        EXPECT_EQ(entry, 0x100u);
+        EXPECT_EQ(again->board->flash[descriptor_end_word], 0x5C2u);
     }
+}
+
+// Writes `image`'s pages straight into the robot's flash.
+void install(Robot &robot, const aseba::flash::ProgramImage &image)
+{
+    for (const auto &page : aseba::flash::make_pages(image)) {
+        for (uint32_t i = 0; i < 32; i++)
+            robot.board->flash[page.number * 32u + i] =
+              page.bytes[4 * i] | page.bytes[4 * i + 1] << 8 | page.bytes[4 * i + 2] << 16;
+    }
+}
+
+TEST(Bootloader, AcceptsOnlyEntriesThatASixteenBitJumpReaches)
+{
+    // An application reaching past PC 0x10000: its descriptor is valid with
+    // the entry 0x100 and refused when the entry is changed (the entry is
+    // not under the CRC) to 0x10000, to 0xFE (below the application) or to
+    // an odd address.
+    aseba::flash::ProgramImage image;
+    image.instructions = { { 0x100, 0x040200 }, { 0x102, 0 }, { 0x10002, 0x123456 } };
+    aseba::flash::add_application_descriptor(image);
+    Robot robot;
+    install(robot, image);
+    uint32_t entry = 0;
+    ASSERT_TRUE(boot_application_valid(robot.board.get(), &entry));
+    EXPECT_EQ(entry, 0x100u);
+    const uint32_t entry_word = (application_end - 0x40 + 2) / 2;
+    for (uint32_t bad : { 0x10000u, 0xFEu, 0x201u }) {
+        robot.board->flash[entry_word] = bad;
+        EXPECT_FALSE(boot_application_valid(robot.board.get(), &entry)) << bad;
+    }
+    robot.board->flash[entry_word] = 0xFFFE;
+    EXPECT_TRUE(boot_application_valid(robot.board.get(), &entry));
+    EXPECT_EQ(entry, 0xFFFEu);
 }
 
 } // namespace

@@ -1,12 +1,14 @@
 # Tests of the fail-safe record store, the serial bootloader and the HEX
-# reader, on the host board with power cuts.
+# reader and writer, the e-puck images, and the linker scripts against the
+# flash layout, on the host board with power cuts.
 TESTS += bootloader_store_test
 bootloader_store_test_SOURCES := tests/bootloader/store_test.cpp
 bootloader_store_test_LIBS := aseba_bootloader aseba_host_board aseba_node
 bootloader_store_test_LDLIBS := -lgtest -lgtest_main -pthread
 
 TESTS += bootloader_hex_test
-bootloader_hex_test_SOURCES := tests/bootloader/hex_test.cpp tests/bootloader/tiny_bootloader_test.cpp
+bootloader_hex_test_SOURCES := tests/bootloader/hex_test.cpp tests/bootloader/tiny_bootloader_test.cpp \
+                              tests/bootloader/epuck_image_test.cpp
 bootloader_hex_test_LIBS := aseba_flash aseba_node
 bootloader_hex_test_LDLIBS := -lgtest -lgtest_main -pthread
 
@@ -14,3 +16,7 @@ TESTS += bootloader_protocol_test
 bootloader_protocol_test_SOURCES := tests/bootloader/bootloader_test.cpp
 bootloader_protocol_test_LIBS := aseba_flash aseba_bootloader aseba_host_board aseba_node
 bootloader_protocol_test_LDLIBS := -lgtest -lgtest_main -pthread
+
+TESTS += bootloader_linker_scripts_test
+bootloader_linker_scripts_test_SOURCES := tests/bootloader/linker_scripts_test.cpp
+bootloader_linker_scripts_test_LDLIBS := -lgtest -lgtest_main -pthread

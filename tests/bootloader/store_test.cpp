@@ -177,6 +177,27 @@ TEST(Store, SettingsAndBytecodeAreIndependent)
     EXPECT_EQ(load_bytecode(board.get()), program(200, 6));
 }
 
+TEST(NodeId, ComesFromTheSettingsOrElseFromTheSelector)
+{
+    // Hardware §6.6: without settings, (selector & 7) + 1.
+    auto board = new_board();
+    EXPECT_EQ(epuck_store_node_id(board.get(), 0), 1);
+    EXPECT_EQ(epuck_store_node_id(board.get(), 13), 6);
+    // Settings word 0 is the node id.
+    Words settings{ 42, 1, 2 };
+    ASSERT_TRUE(epuck_store_save_settings(board.get(), settings.data(), 3));
+    EXPECT_EQ(epuck_store_node_id(board.get(), 13), 42);
+    // Not a node id (0, the broadcast 0xFFFF) or an empty record: the selector.
+    for (Words other : { Words{ 0, 5 }, Words{ 0xFFFF }, Words{} }) {
+        ASSERT_TRUE(epuck_store_save_settings(
+          board.get(), other.data(), static_cast<uint16_t>(other.size())));
+        EXPECT_EQ(epuck_store_node_id(board.get(), 2), 3);
+    }
+    Words highest{ 0xFFFE };
+    ASSERT_TRUE(epuck_store_save_settings(board.get(), highest.data(), 1));
+    EXPECT_EQ(epuck_store_node_id(board.get(), 2), 0xFFFE);
+}
+
 TEST(Store, ReadsSlotsWrittenFromTheDocumentedFormat)
 {
     auto board = new_board();

@@ -20,7 +20,3 @@ TESTS += hal_host_test
 hal_host_test_SOURCES := tests/hal/host_board_test.cpp
 hal_host_test_LIBS := aseba_host_board
 hal_host_test_LDLIBS := $(HAL_TEST_GTEST_LDLIBS)
-
-TESTS += hal_linker_script_test
-hal_linker_script_test_SOURCES := tests/hal/linker_script_test.cpp
-hal_linker_script_test_LDLIBS := $(HAL_TEST_GTEST_LDLIBS)

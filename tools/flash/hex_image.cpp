@@ -2,12 +2,15 @@
 
 #include "tools/flash/hex_image.hpp"
 
+#include <algorithm>
+#include <iomanip>
 #include <iterator>
 #include <sstream>
 #include <string>
 
 extern "C" {
 #include "bootloader/boot_application.h"
+#include "bootloader/bootloader.h"
 #include "vm/node.h"
 }
 
@@ -27,6 +30,10 @@ constexpr uint32_t eeprom_hex_end = 0x1000000;
 constexpr uint32_t config_hex_start = 0x1F00000;
 constexpr uint32_t config_hex_end = 0x1F00020; // 8 words, 4 bytes each
 constexpr uint32_t pc_units_per_instruction = 2;
+constexpr uint32_t configuration_pc_start = config_hex_start / hex_bytes_per_pc_unit;
+constexpr uint32_t configuration_pc_end = config_hex_end / hex_bytes_per_pc_unit;
+constexpr uint32_t hex_record_max_bytes = 16; // as bin2hex writes them
+constexpr uint32_t hex_segment_shift = 16;    // the extended linear address: bits 31:16
 
 std::string hex_number(uint32_t value)
 {
@@ -92,6 +99,13 @@ void add_data(ProgramImage &image,
     }
     if (hex_address >= config_hex_start && hex_end <= config_hex_end) {
         image.skipped_bytes += count;
+        // Each word is 2 bytes then 2 zero bytes; keep the whole ones.
+        for (std::size_t i = 0; i + bytes_per_instruction <= count; i += bytes_per_instruction) {
+            uint32_t at = hex_address + static_cast<uint32_t>(i);
+            if (at % bytes_per_instruction == 0)
+                image.configuration[at / hex_bytes_per_pc_unit] =
+                  static_cast<uint16_t>(data[i] | data[i + 1] << 8);
+        }
         return;
     }
     if (hex_address % bytes_per_instruction != 0 || count % bytes_per_instruction != 0)
@@ -166,11 +180,16 @@ void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> ent
         auto found = image.instructions.find(pc);
         return found == image.instructions.end() ? erased_instruction : found->second;
     };
+    if (!image.instructions.empty() && image.instructions.begin()->first < BOOT_APPLICATION_START)
+        throw HexError("PC address " + hex_number(image.instructions.begin()->first) +
+                       " is below the application's start " + hex_number(BOOT_APPLICATION_START) +
+                       ": rows 0-3 belong to the bootloader image (link the application with "
+                       "linker/epuck-app.gld)");
     if (!entry.has_value()) {
-        uint32_t goto_low = instruction_at(0);
-        if (goto_low >> 16 != BOOT_GOTO_OPCODE)
-            throw HexError("PC 0 holds no GOTO: the image has no reset vector");
-        entry = (goto_low & 0xFFFF) | (instruction_at(2) & BOOT_GOTO_HIGH_MASK) << 16;
+        if (instruction_at(BOOT_APPLICATION_ENTRY) >> 16 != BOOT_GOTO_OPCODE)
+            throw HexError("PC " + hex_number(BOOT_APPLICATION_ENTRY) +
+                           " holds no GOTO: the application has no reset slot");
+        entry = BOOT_APPLICATION_ENTRY;
     }
     auto code_end = image.instructions.lower_bound(BOOT_DESCRIPTOR_ADDRESS);
     if (code_end == image.instructions.begin())
@@ -179,6 +198,11 @@ void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> ent
     if (code_end != image.instructions.end() && code_end->first < BOOT_APPLICATION_END)
         throw HexError("the code reaches the descriptor row at " +
                        hex_number(BOOT_DESCRIPTOR_ADDRESS));
+    if (*entry < BOOT_APPLICATION_START || *entry >= end || *entry >= BOOT_ENTRY_LIMIT ||
+        *entry % pc_units_per_instruction != 0)
+        throw HexError("the entry " + hex_number(*entry) + " is not an even address in [" +
+                       hex_number(BOOT_APPLICATION_START) + ", " +
+                       hex_number(std::min<uint32_t>(end, BOOT_ENTRY_LIMIT)) + ")");
     uint16_t crc = 0;
     for (uint32_t pc = BOOT_CHECKED_START; pc < end; pc += pc_units_per_instruction) {
         uint32_t value = instruction_at(pc);
@@ -202,13 +226,14 @@ std::vector<Page> make_pages(const ProgramImage &image)
     // Every page up to the end of the code, so that no old row stays inside
     // the CRC's range; above it (the descriptor), only the pages with data.
     auto code_end = image.instructions.lower_bound(BOOT_DESCRIPTOR_ADDRESS);
-    uint32_t last_code_page =
-      code_end == image.instructions.begin() ? 0 : std::prev(code_end)->first / page_span;
     std::vector<uint32_t> numbers;
-    for (uint32_t number = 0; number <= last_code_page; number++)
-        numbers.push_back(number);
+    if (code_end != image.instructions.begin()) {
+        uint32_t last_code_page = std::prev(code_end)->first / page_span;
+        for (uint32_t number = BOOT_PAGES_START; number <= last_code_page; number++)
+            numbers.push_back(number);
+    }
     for (auto it = code_end; it != image.instructions.end(); ++it) {
-        if (it->first / page_span != numbers.back())
+        if (numbers.empty() || it->first / page_span != numbers.back())
             numbers.push_back(it->first / page_span);
     }
     for (uint32_t number : numbers) {
@@ -223,6 +248,78 @@ std::vector<Page> make_pages(const ProgramImage &image)
         pages.push_back(page);
     }
     return pages;
+}
+
+namespace
+{
+
+// One Intel HEX record: count, address, type, data, checksum.
+std::string hex_record(uint8_t type, uint16_t address, const std::vector<uint8_t> &data)
+{
+    std::vector<uint8_t> bytes{ static_cast<uint8_t>(data.size()),
+                                static_cast<uint8_t>(address >> 8),
+                                static_cast<uint8_t>(address),
+                                type };
+    bytes.insert(bytes.end(), data.begin(), data.end());
+    uint8_t sum = 0;
+    for (uint8_t byte : bytes)
+        sum = static_cast<uint8_t>(sum + byte);
+    bytes.push_back(static_cast<uint8_t>(-sum));
+    std::ostringstream line;
+    line << ':' << std::hex << std::uppercase << std::setfill('0');
+    for (uint8_t byte : bytes)
+        line << std::setw(2) << static_cast<unsigned>(byte);
+    line << '\n';
+    return line.str();
+}
+
+} // namespace
+
+std::string write_microchip_hex(const ProgramImage &image)
+{
+    // Every byte of the file at its hex address, in increasing order.
+    std::map<uint32_t, uint8_t> bytes;
+    for (const auto &[pc, value] : image.instructions) {
+        uint32_t at = pc * hex_bytes_per_pc_unit;
+        for (uint32_t b = 0; b < 3; b++)
+            bytes[at + b] = static_cast<uint8_t>(value >> (8 * b));
+        bytes[at + 3] = 0; // the phantom byte
+    }
+    for (const auto &[pc, value] : image.configuration) {
+        if (pc < configuration_pc_start || pc >= configuration_pc_end)
+            throw HexError("configuration word at " + hex_number(pc) +
+                           " is outside the configuration area");
+        uint32_t at = pc * hex_bytes_per_pc_unit;
+        bytes[at] = static_cast<uint8_t>(value);
+        bytes[at + 1] = static_cast<uint8_t>(value >> 8);
+        bytes[at + 2] = 0;
+        bytes[at + 3] = 0;
+    }
+    std::string text;
+    std::optional<uint32_t> segment;
+    auto it = bytes.begin();
+    while (it != bytes.end()) {
+        uint32_t start = it->first;
+        if (segment != start >> hex_segment_shift) {
+            segment = start >> hex_segment_shift;
+            text +=
+              hex_record(record_extended_linear_address,
+                         0,
+                         { static_cast<uint8_t>(*segment >> 8), static_cast<uint8_t>(*segment) });
+        }
+        // A run of consecutive bytes up to the next 16-byte boundary.
+        uint32_t limit = (start / hex_record_max_bytes + 1) * hex_record_max_bytes;
+        std::vector<uint8_t> data;
+        uint32_t next = start;
+        while (it != bytes.end() && it->first == next && next < limit) {
+            data.push_back(it->second);
+            ++it;
+            next++;
+        }
+        text += hex_record(record_data, static_cast<uint16_t>(start), data);
+    }
+    text += hex_record(record_end_of_file, 0, {});
+    return text;
 }
 
 } // namespace aseba::flash

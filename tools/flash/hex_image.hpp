@@ -5,8 +5,9 @@
 // In such a file every 24-bit instruction takes 4 bytes (low, middle, upper,
 // then a zero "phantom" byte) at byte address 2 x its PC address. Data EEPROM
 // (byte addresses 0xFFE000-0xFFFFFF) and configuration words (from
-// 0x1F00000) are counted and skipped: the bootloader only writes program
-// flash.
+// 0x1F00000) are counted and skipped as the bootloader only writes program
+// flash; the configuration words are kept aside for the images that a
+// programmer writes (write_microchip_hex).
 
 #pragma once
 
@@ -15,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -28,8 +30,9 @@ struct HexError : std::runtime_error {
 
 // Program memory read from a HEX file.
 struct ProgramImage {
-    std::map<uint32_t, uint32_t> instructions; // PC address -> 24-bit instruction
-    std::size_t skipped_bytes = 0;             // EEPROM and configuration data
+    std::map<uint32_t, uint32_t> instructions;  // PC address -> 24-bit instruction
+    std::size_t skipped_bytes = 0;              // EEPROM and configuration data
+    std::map<uint32_t, uint16_t> configuration; // PC address (0xF80000..) -> configuration word
 };
 
 // Reads `text`; throws HexError for a malformed record (syntax, checksum,
@@ -48,17 +51,32 @@ struct Page {
 };
 
 // Adds the descriptor that the bootloader checks before it starts the
-// application (bootloader/boot_application.h): entry from the reset GOTO at
-// PC 0 unless `entry` is given (an image that also holds the bootloader,
-// whose GOTO leads there), end after the highest instruction below the
-// descriptor, CRC of [4, end) with missing instructions erased. Throws
-// HexError when there is no entry or the code reaches the descriptor's row.
+// application (bootloader/boot_application.h) to an application image,
+// which starts at BOOT_APPLICATION_START (0x100, its GOTO table). The entry
+// is `entry` when given (a synthetic image), else BOOT_APPLICATION_ENTRY,
+// the table's reset slot, which must hold a GOTO (to the application's
+// start-up code). End after the highest instruction below the descriptor,
+// CRC of [0x100, end) with missing instructions erased. Throws HexError when
+// the image has instructions below 0x100 (they belong to the bootloader
+// image), has no reset slot, has an entry outside [0x100, end) or at or above
+// BOOT_ENTRY_LIMIT, or when the code reaches the descriptor's row.
 void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> entry = {});
 
-// The pages to write, in increasing order: every page from 0 to the end of
-// the code, then the pages above it that hold data (the descriptor);
-// missing instructions are erased (0xFFFFFF), phantom bytes 0. Writing all
-// of them leaves flash exactly as the descriptor's CRC expects.
+// The pages to write, in increasing order: every page from BOOT_PAGES_START
+// (the application's first row) to the end of the code, then the pages above
+// it that hold data (the descriptor); missing instructions are erased
+// (0xFFFFFF), phantom bytes 0. Writing all of them leaves flash exactly as
+// the descriptor's CRC expects. Instructions below the first page are not
+// written (add_application_descriptor refuses such an image).
 std::vector<Page> make_pages(const ProgramImage &image);
+
+// `image` as Microchip's bin2hex writes Intel HEX: an extended linear
+// address record (type 04) before the first data record of every 64 KB of
+// hex addresses, data records (type 00) of up to 16 bytes that neither cross
+// a 16-byte boundary nor span a gap, 4 bytes per instruction (phantom 0) at
+// 2 x PC, configuration words as 2 bytes and 2 zero bytes, upper-case
+// digits, one record per line (LF), then the end-of-file record. Reading the text
+// back gives the same instructions and configuration words.
+std::string write_microchip_hex(const ProgramImage &image);
 
 } // namespace aseba::flash
