@@ -4,32 +4,35 @@
 
 #include <cmath>
 
+#include "robot_memory.hpp"
+
 namespace aseba::arena
 {
 namespace
 {
 
 constexpr uint32_t milliseconds_per_step = uint32_t(EnkiWorld::step_seconds * 1000 + 0.5);
-// Firmware passes per robot and millisecond at most: enough to take a frame
-// and answer it, bounded so that a robot flooding the bus cannot stall time.
-constexpr int polls_per_tick = 4;
+// Firmware passes per robot and millisecond at most. The node takes one
+// frame a pass and every robot sees every frame, so while a group is flashed
+// each robot skips the bootloader frames meant for the others: 32 a
+// millisecond keeps up with the tools. Bounded so that a robot flooding the
+// bus cannot stall time; an idle robot needs one pass.
+constexpr int polls_per_tick = 32;
 
 } // namespace
 
 ArenaSimulation::ArenaSimulation(const Arena &arena,
                                  uint32_t seed,
-                                 const std::vector<uint16_t> &bytecode)
+                                 const std::vector<uint16_t> &bytecode,
+                                 const std::function<void(host_robot &)> &prepare)
   : world_(arena, seed)
 {
     for (size_t i = 0; i < arena.robots.size(); i++) {
-        auto robot = std::make_unique<Robot>();
-        host_board_init(&robot->board, nullptr, nullptr);
+        auto robot = std::make_unique<host_robot>();
+        host_robot_init(robot.get(), arena.robots[i].node_id, nullptr, nullptr);
         host_board_set_world(&robot->board, world_.world_of(i));
         network_.attach(&robot->board);
-        epuck_firmware_init(&robot->firmware, &robot->board, arena.robots[i].node_id);
-        if (!bytecode.empty())
-            epuck_firmware_start_program(
-              &robot->firmware, bytecode.data(), uint16_t(bytecode.size()));
+        host::power_on(*robot, prepare, bytecode);
         robots_.push_back(std::move(robot));
     }
 }
@@ -43,7 +46,7 @@ void ArenaSimulation::step()
         for (auto &robot : robots_) {
             host_board_set_time(&robot->board, milliseconds_);
             for (int poll = 0; poll < polls_per_tick; poll++)
-                if (!epuck_firmware_poll(&robot->firmware))
+                if (!host_robot_poll(robot.get()))
                     break;
         }
         network_.service(0);
@@ -66,6 +69,11 @@ double ArenaSimulation::seconds() const
 size_t ArenaSimulation::robot_count() const
 {
     return robots_.size();
+}
+
+host_robot &ArenaSimulation::robot(size_t index)
+{
+    return *robots_.at(index);
 }
 
 epuck_firmware &ArenaSimulation::firmware(size_t index)

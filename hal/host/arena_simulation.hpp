@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -17,7 +18,7 @@
 #include "network.hpp"
 
 extern "C" {
-#include "firmware/epuck_firmware.h"
+#include "hal/host/host_robot.h"
 }
 
 namespace aseba::arena
@@ -26,10 +27,12 @@ namespace aseba::arena
 class ArenaSimulation
 {
   public:
-    // Builds the world and starts each robot's firmware with its node id;
-    // `bytecode` (may be empty) is started on every robot as a stored
-    // program would be at boot.
-    ArenaSimulation(const Arena &arena, uint32_t seed, const std::vector<uint16_t> &bytecode);
+    // Builds the world and powers each robot on with its node id, `prepare`
+    // and `bytecode` as host::power_on does (robot_memory.hpp).
+    ArenaSimulation(const Arena &arena,
+                    uint32_t seed,
+                    const std::vector<uint16_t> &bytecode,
+                    const std::function<void(host_robot &)> &prepare = {});
     ~ArenaSimulation();
     ArenaSimulation(const ArenaSimulation &) = delete;
     ArenaSimulation &operator=(const ArenaSimulation &) = delete;
@@ -42,6 +45,7 @@ class ArenaSimulation
     // Simulated seconds since the start.
     double seconds() const;
     size_t robot_count() const;
+    host_robot &robot(size_t index);
     epuck_firmware &firmware(size_t index);
     hal_board &board(size_t index);
     EnkiWorld &world()
@@ -55,13 +59,9 @@ class ArenaSimulation
     }
 
   private:
-    struct Robot {
-        hal_board board;
-        epuck_firmware firmware;
-    };
     EnkiWorld world_;
     host::Network network_;
-    std::vector<std::unique_ptr<Robot>> robots_;
+    std::vector<std::unique_ptr<host_robot>> robots_;
     uint32_t milliseconds_ = 0;
 };
 

@@ -11,8 +11,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
+#include <sys/stat.h>
 #include <unistd.h>
 #include <string>
 #include <vector>
@@ -21,11 +24,12 @@
 #include "arena_simulation.hpp"
 #include "network.hpp"
 #include "network_status.hpp"
+#include "robot_memory.hpp"
 #include "tools/compiler/program_file.hpp"
 #include "tools/compiler/target_presets.hpp"
 
 extern "C" {
-#include "firmware/epuck_firmware.h"
+#include "hal/host/host_robot.h"
 }
 
 namespace
@@ -46,8 +50,22 @@ Options:
                     and start it on every robot, as if stored in the robots
   --node NAME       in an .aesl project, the node whose program to load
                     (default: the one named e-puck, else the first)
+  --firmware FILE   the application image (Microchip HEX with its descriptor,
+                    as `make dspic30` writes it) in every robot's flash at
+                    start (default: a placeholder image that the bootloader
+                    accepts)
+  --memory DIR      keep each robot's flash and EEPROM in DIR/robot-ID.mem:
+                    loaded at start when present, saved when epuck-emu stops;
+                    stored programs and flashed images then outlive the run
   --quiet           no status line
   -h, --help        show this help
+
+Each robot starts its firmware at once and runs the program stored in its
+flash (or --load's). REBOOT (Studio, `aseba reboot`, `aseba flash`) resets it
+as on the chip: its Aseba bootloader runs, answers the bootloader messages for
+1 s (longer once a host addresses it), then starts the application if the
+flashed image is valid. The PC cannot execute dsPIC code: a valid image runs
+this build's firmware.
 
 Arena mode (robots in a physical world, simulated by Enki):
   --arena FILE      run the arena described in FILE (docs/arena-format.md),
@@ -84,6 +102,8 @@ struct Options {
     std::string node;
     bool quiet = false;
     std::string arena;
+    std::string firmware;
+    std::string memory_folder;
     bool robots_given = false;
     uint32_t seed = 1;
     bool realtime = false;
@@ -142,6 +162,10 @@ Options parse_options(int argc, char **argv)
             options.load = value();
         } else if (argument == "--node") {
             options.node = value();
+        } else if (argument == "--firmware") {
+            options.firmware = value();
+        } else if (argument == "--memory") {
+            options.memory_folder = value();
         } else if (argument == "--quiet") {
             options.quiet = true;
         } else if (argument == "--duration") {
@@ -153,10 +177,56 @@ Options parse_options(int argc, char **argv)
     return options;
 }
 
-struct Robot {
-    hal_board board;
-    epuck_firmware firmware;
-};
+// Where robot `node_id` keeps its memories with --memory.
+std::string memory_file(const Options &options, uint16_t node_id)
+{
+    return options.memory_folder + "/robot-" + std::to_string(node_id) + ".mem";
+}
+
+// Fills a robot's memories before power-on: the --firmware image, then the
+// memories saved by an earlier run (which win).
+std::function<void(host_robot &)> memory_preparation(const Options &options)
+{
+    std::optional<aseba::flash::ProgramImage> image;
+    if (!options.firmware.empty()) {
+        try {
+            image = aseba::host::read_application_file(options.firmware);
+        } catch (const std::exception &error) {
+            fail(error.what());
+        }
+    }
+    if (!options.memory_folder.empty()) {
+        struct stat status;
+        if (stat(options.memory_folder.c_str(), &status) != 0 || !S_ISDIR(status.st_mode))
+            fail("--memory: " + options.memory_folder + " is not a folder");
+    }
+    return [image, &options](host_robot &robot) {
+        if (image)
+            aseba::host::install_application(robot.board, *image);
+        if (!options.memory_folder.empty())
+            aseba::host::load_memories(robot.board, memory_file(options, robot.node_id));
+    };
+}
+
+// Saves every robot's memories with --memory; returns false after reporting
+// a failure.
+template<typename RobotAt>
+bool save_memories(const Options &options, size_t count, RobotAt robot_at)
+{
+    if (options.memory_folder.empty())
+        return true;
+    bool saved = true;
+    for (size_t i = 0; i < count; i++) {
+        host_robot &robot = robot_at(i);
+        try {
+            aseba::host::save_memories(robot.board, memory_file(options, robot.node_id));
+        } catch (const std::exception &error) {
+            std::fprintf(stderr, "epuck-emu: %s\n", error.what());
+            saved = false;
+        }
+    }
+    return saved;
+}
 
 // The program of --load, compiled for the e-puck; exits with the compiler's
 // message when it does not compile.
@@ -205,7 +275,14 @@ int run_arena(const Options &options,
     } catch (const std::exception &error) {
         fail(error.what());
     }
-    aseba::arena::ArenaSimulation simulation(arena, options.seed, bytecode);
+    std::unique_ptr<aseba::arena::ArenaSimulation> simulation_owner;
+    try {
+        simulation_owner = std::make_unique<aseba::arena::ArenaSimulation>(
+          arena, options.seed, bytecode, memory_preparation(options));
+    } catch (const std::exception &error) {
+        fail(error.what());
+    }
+    aseba::arena::ArenaSimulation &simulation = *simulation_owner;
     aseba::host::Network &network = simulation.network();
     try {
         network.listen(options.port);
@@ -244,8 +321,9 @@ int run_arena(const Options &options,
             break;
         simulation.step();
         double wall = wall_seconds();
-        if (options.realtime && simulation.seconds() > wall) {
-            // Ahead of the clock: wait, serving tools meanwhile.
+        // Ahead of the clock: wait, serving tools meanwhile. A frame ends a
+        // wait early, so wait again until the clock has caught up.
+        while (options.realtime && simulation.seconds() > wall && !stop_requested) {
             constexpr double milliseconds_per_second = 1000;
             network.service(
               int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
@@ -279,7 +357,10 @@ int run_arena(const Options &options,
           status.line(simulation.seconds(), simulation.robot_count(), network.client_count());
         std::printf("epuck-emu: %s\n", line.c_str());
     }
-    return 0;
+    bool saved = save_memories(options, simulation.robot_count(), [&](size_t i) -> host_robot & {
+        return simulation.robot(i);
+    });
+    return saved ? 0 : 1;
 }
 
 } // namespace
@@ -298,18 +379,16 @@ int main(int argc, char **argv)
     if (!options.arena.empty())
         return run_arena(options, program, bytecode);
 
-    std::vector<std::unique_ptr<Robot>> robots;
+    std::vector<std::unique_ptr<host_robot>> robots;
     aseba::host::Network network;
     try {
         network.listen(options.port);
+        auto prepare = memory_preparation(options);
         for (unsigned i = 0; i < options.robots; i++) {
-            auto robot = std::make_unique<Robot>();
-            host_board_init(&robot->board, nullptr, nullptr);
+            auto robot = std::make_unique<host_robot>();
+            host_robot_init(robot.get(), uint16_t(i + 1), nullptr, nullptr);
             network.attach(&robot->board);
-            epuck_firmware_init(&robot->firmware, &robot->board, uint16_t(i + 1));
-            if (!bytecode.empty())
-                epuck_firmware_start_program(
-                  &robot->firmware, bytecode.data(), uint16_t(bytecode.size()));
+            aseba::host::power_on(*robot, prepare, bytecode);
             robots.push_back(std::move(robot));
         }
     } catch (const std::exception &error) {
@@ -344,7 +423,7 @@ int main(int argc, char **argv)
         bool busy = false;
         for (auto &robot : robots) {
             host_board_set_time(&robot->board, now_ms);
-            busy |= epuck_firmware_poll(&robot->firmware);
+            busy |= host_robot_poll(robot.get());
         }
         // Wait for the network only when no robot has work left; the robots'
         // clocks tick in milliseconds, so never wait longer than one.
@@ -360,5 +439,7 @@ int main(int argc, char **argv)
                 terminal && !options.quiet ? "\n" : "",
                 std::chrono::duration<double>(clock::now() - start).count(),
                 static_cast<unsigned long long>(network.frames_moved()));
-    return 0;
+    bool saved =
+      save_memories(options, robots.size(), [&](size_t i) -> host_robot & { return *robots[i]; });
+    return saved ? 0 : 1;
 }

@@ -195,6 +195,24 @@ void hal_reset(hal_board *board)
     board->reset_requested = true;
 }
 
+void host_board_reset(hal_board *board)
+{
+    // A reset stops every peripheral and forgets what the UART held; the
+    // clock, the world, the link's wiring and the memories are not the
+    // chip's to lose.
+    memset(board->timers, 0, sizeof board->timers);
+    board->adc_scan_callback = 0;
+    board->adc_scan_context = 0;
+    board->adc_scan_mask = 0;
+    memset(board->outputs, 0, sizeof board->outputs);
+    memset(board->edge_callback, 0, sizeof board->edge_callback);
+    memset(board->edge_context, 0, sizeof board->edge_context);
+    board->receive_start = 0;
+    board->receive_count = 0;
+    board->critical_depth = 0;
+    board->reset_requested = false;
+}
+
 bool host_board_take_reset(hal_board *board)
 {
     bool requested = board->reset_requested;

@@ -108,6 +108,10 @@ void host_board_input_changed(hal_board *board, hal_pin pin);
 // Whether the firmware asked for a reset since the last call (then clears it).
 bool host_board_take_reset(hal_board *board);
 
+// Resets the chip: timers, ADC scan, pin watches and outputs stop, received
+// bytes are dropped; time, world, link wiring and memories stay.
+void host_board_reset(hal_board *board);
+
 // Makes the `count`-th erase or write from now (1 = the next) lose power:
 // that operation takes effect on the first half of its words only (none for a
 // single word) and fails, as does every later one until power comes back.

@@ -155,23 +155,18 @@ std::string ScratchFolder::write(const std::string &name, const std::string &con
     return file;
 }
 
-Emulator::Emulator(unsigned robots)
+Emulator::Emulator(unsigned robots, const std::vector<std::string> &options)
 {
     port_ = find_free_port();
     int output[2];
     if (pipe(output) != 0)
         throw std::runtime_error("pipe failed");
-    pid_ = start({ EMULATOR_PATH,
-                   "--port",
-                   std::to_string(port_),
-                   "--robots",
-                   std::to_string(robots),
-                   "--duration",
-                   EMULATOR_SAFETY_SECONDS },
-                 "",
-                 output[1],
-                 "",
-                 "/dev/null");
+    std::vector<std::string> arguments = { EMULATOR_PATH,          "--port",
+                                           std::to_string(port_),  "--robots",
+                                           std::to_string(robots), "--duration",
+                                           EMULATOR_SAFETY_SECONDS };
+    arguments.insert(arguments.end(), options.begin(), options.end());
+    pid_ = start(arguments, "", output[1], "", "/dev/null");
     close(output[1]);
     // Ready when it says where it listens.
     std::string seen;
@@ -196,7 +191,13 @@ Emulator::Emulator(unsigned robots)
 
 Emulator::~Emulator()
 {
+    stop();
+}
+
+void Emulator::stop()
+{
     stop_process(pid_);
+    pid_ = -1;
 }
 
 std::string Emulator::target() const

@@ -45,8 +45,10 @@ class ScratchFolder
 class Emulator
 {
   public:
-    explicit Emulator(unsigned robots = 1);
+    explicit Emulator(unsigned robots = 1, const std::vector<std::string> &options = {});
     ~Emulator();
+    // Stops it as Ctrl-C would (it saves what --memory asks), and waits.
+    void stop();
     Emulator(const Emulator &) = delete;
     Emulator &operator=(const Emulator &) = delete;
 

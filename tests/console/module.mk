@@ -7,9 +7,11 @@ client_test_LDLIBS := -lgtest -lgtest_main -pthread
 
 TESTS += console_test
 console_test_SOURCES := tests/console/console_test.cpp tests/console/network_test.cpp \
-                        tests/console/reference_test.cpp \
+                        tests/console/reference_test.cpp tests/console/flash_test.cpp \
+                        tests/console/flasher_test.cpp \
                         tests/console/console_support.cpp
-console_test_LIBS := aseba_client aseba_compiler aseba_natives aseba_vm
+console_test_LIBS := aseba_client aseba_flash aseba_host_board aseba_compiler aseba_natives \
+                     aseba_node aseba_vm
 console_test_LDLIBS := -lgtest -lgtest_main -pthread
 
 # The test starts the plain host builds of these programs (order-only: they

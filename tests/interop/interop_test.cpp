@@ -11,6 +11,14 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include "tools/flash/hex_image.hpp"
+
+extern "C" {
+#include "bootloader/boot_application.h"
+}
+
 #include <map>
 #include <thread>
 
@@ -582,6 +590,69 @@ TEST(Interop, RobotsOfAGroupHearEachOther)
                   expected_sender)
           << "heard_from";
     }
+}
+
+// --- 7. asebacmd whex ------------------------------------------------------
+
+// An application image the robots' bootloader accepts (or, with `corrupt`,
+// one whose descriptor CRC is off by one bit), written as Microchip HEX.
+std::string write_application_image(const ScratchFolder &scratch,
+                                    const std::string &name,
+                                    bool corrupt)
+{
+    constexpr uint32_t application_start = BOOT_APPLICATION_START; // the bootloader's first page
+    constexpr uint32_t instructions = 300;
+    constexpr uint32_t pc_units_per_instruction = 2;
+    aseba::flash::ProgramImage image;
+    for (uint32_t i = 0; i < instructions; i++)
+        image.instructions[application_start + i * pc_units_per_instruction] = 0x123456u ^ i;
+    aseba::flash::add_application_descriptor(image, application_start);
+    if (corrupt)
+        image.instructions[BOOT_DESCRIPTOR_ADDRESS +
+                           BOOT_DESCRIPTOR_CRC_INDEX * pc_units_per_instruction] ^= 1;
+    std::string path = scratch.file(name);
+    std::ofstream(path) << aseba::flash::write_microchip_hex(image);
+    return path;
+}
+
+// Whether `robot` answers LIST_NODES within `timeout` (an application runs).
+bool answers_as_node(AsebaClient &client, uint16_t robot, Milliseconds timeout)
+{
+    client.send(message::list_nodes, { int16_t(protocol_version) });
+    return client.receive_until(from_node(message::node_present, robot), timeout).has_value();
+}
+
+TEST(Interop, AsebacmdWhexFlashesARobotThroughItsBootloader)
+{
+    const uint16_t robot_count = 2, flashed = 2;
+    ScratchFolder scratch;
+    EmulatedRobots robots(scratch, robot_count);
+    auto whex = [&](const std::string &file) {
+        ToolRun run = run_tool(
+          scratch,
+          "asebacmd.log",
+          { "asebacmd", "-t", robots.target(), "whex", std::to_string(flashed), file, "reset" },
+          tool_timeout);
+        EXPECT_TRUE(run.finished_in_time && run.exit_code == 0) << run.how_it_ended << "\n"
+                                                                << run.output;
+        EXPECT_NE(run.output.find("Write completed"), std::string::npos) << run.output;
+    };
+
+    // A refused image: every page is acknowledged, but the bootloader finds
+    // no valid application after BOOTLOADER_RESET and stays; the robot is no
+    // longer a node, the other robot still is.
+    whex(write_application_image(scratch, "corrupt.hex", true));
+    {
+        AsebaClient client(robots.port(), answer_timeout);
+        EXPECT_FALSE(answers_as_node(client, flashed, 1500ms));
+        EXPECT_TRUE(answers_as_node(client, first_robot, answer_timeout));
+    }
+    // asebacmd's REBOOT reaches the waiting bootloader, which describes
+    // itself again; the good image then starts.
+    whex(write_application_image(scratch, "good.hex", false));
+    AsebaClient client(robots.port(), answer_timeout);
+    EXPECT_TRUE(answers_as_node(client, flashed, answer_timeout));
+    EXPECT_TRUE(answers_as_node(client, first_robot, answer_timeout));
 }
 
 } // namespace

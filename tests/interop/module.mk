@@ -5,6 +5,7 @@
 TESTS += interop_test
 interop_test_SOURCES := tests/interop/interop_test.cpp tests/interop/aseba_client.cpp \
                         tests/interop/child_process.cpp tests/interop/interop_support.cpp
+interop_test_LIBS := aseba_flash aseba_node
 interop_test_LDLIBS := -lgtest -lgtest_main -pthread
 
 # The test runs the plain host build of the emulator (order-only: it is a

@@ -10,4 +10,5 @@ aseba_client_SOURCES := \
     tools/client/program.cpp \
     tools/client/variables.cpp \
     tools/client/network.cpp \
+    tools/client/flasher.cpp \
     tools/client/message_text.cpp

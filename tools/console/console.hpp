@@ -45,6 +45,7 @@ struct Options {
     bool wait = false;                      // break set: wait for hits
     bool by_line = false;                   // step: up to the next source line
     bool all_messages = false;              // monitor: also descriptions, variables, ...
+    bool no_reboot = false;                 // flash: the nodes already wait in their bootloaders
 };
 
 // Parses argv; throws UsageError. `--help` and `help` set command "help".
@@ -104,6 +105,7 @@ int command_emit(Session &session);
 int command_monitor(Session &session);
 int command_save(Session &session);
 int command_reboot(Session &session);
+int command_flash(Session &session);
 
 // True once Ctrl-C was pressed (watch and monitor stop then).
 bool interrupted();

@@ -34,6 +34,8 @@ Commands:
   monitor            print every event and error on the network
   save [FILE]        write the node's bytecode to its storage (WRITE_BYTECODE)
   reboot             reboot the selected nodes
+  flash IMAGE.hex    write a firmware image into the selected robots at once,
+                     through their bootloaders
   help COMMAND       the options and details of a command
 
 Options for every command:
@@ -144,6 +146,22 @@ first compiled and uploaded (like load). Nodes do not have to confirm.
     { "reboot", R"(usage: aseba reboot [--node NODE]...
 
 Reboots the selected nodes (REBOOT; no answer is expected).
+)" },
+    { "flash", R"(usage: aseba flash IMAGE.hex [--node NODE]... [--no-reboot]
+
+Writes a firmware image (Microchip Intel HEX with the application descriptor,
+as `make dspic30` writes build/dspic30/epuck-aseba.hex) into every selected
+robot at once (default: all), through their Aseba bootloaders (protocol.md
+§6.9): each robot is sent REBOOT, its bootloader describes itself, every page
+is written and acknowledged, then BOOTLOADER_RESET starts the new image and
+the robot must answer as a node again. Robots progress independently; a page
+whose acknowledgement is lost is sent again (3 attempts). A progress bar is
+shown on a terminal, then one line per robot. A robot whose image is invalid
+waits in its bootloader and does not answer as a node: name it by id with
+--node ID to flash it anyway. --no-reboot: the robots already wait in their
+bootloaders (e.g. just after power-on). An interrupted flashing leaves the
+robot in its bootloader, which waits for a new one. Exit status 1 when any
+robot failed.
 )" },
 };
 
@@ -270,6 +288,8 @@ Options parse_command_line(int argc, char **argv)
             options.by_line = true;
         } else if (argument == "--all") {
             options.all_messages = true;
+        } else if (argument == "--no-reboot") {
+            options.no_reboot = true;
         } else {
             throw UsageError("unknown option '" + argument + "'");
         }
@@ -299,7 +319,7 @@ int main(int argc, char **argv)
         { "break", command_break },     { "vars", command_vars },
         { "watch", command_watch },     { "emit", command_emit },
         { "monitor", command_monitor }, { "save", command_save },
-        { "reboot", command_reboot },
+        { "reboot", command_reboot },   { "flash", command_flash },
     };
     try {
         Options options = parse_command_line(argc, argv);

@@ -3,5 +3,6 @@
 PROGRAMS += aseba
 aseba_SOURCES := tools/console/main.cpp tools/console/session.cpp \
                  tools/console/commands_program.cpp tools/console/commands_execution.cpp \
-                 tools/console/commands_variables.cpp tools/console/commands_events.cpp
-aseba_LIBS := aseba_client aseba_compiler aseba_natives aseba_vm
+                 tools/console/commands_variables.cpp tools/console/commands_events.cpp \
+                 tools/console/commands_flash.cpp
+aseba_LIBS := aseba_client aseba_flash aseba_compiler aseba_natives aseba_node aseba_vm

@@ -1,0 +1,54 @@
+// A simulated e-puck from power-on: the board, the Aseba bootloader and the
+// firmware, with the chip's reset sequence. After a reset (the firmware's
+// REBOOT, or the host's request) the bootloader runs first: it waits
+// BOOT_WAIT_MS for a host, programs application rows, and starts the
+// application when the descriptor in flash says a valid one is there. The
+// host cannot execute dsPIC instructions, so "the application" is this
+// build's firmware, started whenever the flashed image is valid; flashing
+// therefore changes what the bootloader accepts, not the code that runs.
+// The factory Tiny Bootloader's second in front of ours is not modelled.
+
+#ifndef HOST_ROBOT_H
+#define HOST_ROBOT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "bootloader/bootloader.h"
+#include "firmware/epuck_firmware.h"
+#include "host_board.h"
+
+typedef enum host_robot_mode {
+    HOST_ROBOT_IN_BOOTLOADER,
+    HOST_ROBOT_IN_APPLICATION
+} host_robot_mode;
+
+typedef struct host_robot {
+    hal_board board;
+    uint16_t node_id; // the bootloader's and the firmware's
+    host_robot_mode mode;
+    uint32_t resets; // since power-on
+    bootloader loader;
+    epuck_firmware firmware;
+} host_robot;
+
+// Prepares the board (flat world, link output to `link_output`, memories
+// erased) without powering on: install an image and place the robot first.
+void host_robot_init(host_robot *robot,
+                     uint16_t node_id,
+                     void (*link_output)(void *context, const uint8_t *bytes, uint16_t count),
+                     void *link_context);
+
+// Powers on into the firmware directly, as if the bootloader had found a
+// valid application and waited out its second: what a simulator wants at
+// start, whatever the flash holds.
+void host_robot_start_application(host_robot *robot);
+
+// Resets the chip: peripherals stop and the bootloader starts.
+void host_robot_reset(host_robot *robot);
+
+// One pass of whatever runs (bootloader or firmware), then the reset it
+// asked for if any; returns whether more work is waiting.
+bool host_robot_poll(host_robot *robot);
+
+#endif

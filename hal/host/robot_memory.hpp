@@ -1,0 +1,55 @@
+// What a simulated e-puck's memories hold before it powers on: the
+// application image the bootloader checks after a reset, the user's program
+// in the bytecode store, and memories kept in files between runs.
+
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "tools/flash/hex_image.hpp"
+
+extern "C" {
+#include "hal/host/host_robot.h"
+}
+
+namespace aseba::host
+{
+
+// The image a simulated robot leaves the factory with: one instruction that
+// loops on itself at the start of the application region, and the
+// descriptor that makes the bootloader accept it. The host runs this build's
+// firmware in place of whatever valid image the flash holds.
+flash::ProgramImage placeholder_application();
+
+// Reads a Microchip HEX file of an application image (with its descriptor,
+// as the bootloader receives it); throws std::runtime_error naming the file
+// and the fault.
+flash::ProgramImage read_application_file(const std::string &path);
+
+// Writes `image` into the board's flash row by row, as a programmer would.
+// Throws std::runtime_error when a row does not take.
+void install_application(hal_board &board, const flash::ProgramImage &image);
+
+// Stores `bytecode` in the board's bytecode store, as WRITE_BYTECODE does,
+// so that the firmware starts it at boot. Throws when it does not fit.
+void store_program(hal_board &board, const std::vector<uint16_t> &bytecode);
+
+// Loads the memories saved at `path`; false when there is no such file.
+// Throws when the file exists but is not a robot's memories.
+bool load_memories(hal_board &board, const std::string &path);
+
+// Saves the memories to `path` through a temporary file, so that an
+// interrupted save leaves the previous file whole. Throws on failure.
+void save_memories(const hal_board &board, const std::string &path);
+
+// Powers a robot on: its flash gets the placeholder application, then
+// `prepare` (if given) may change its memories, then `bytecode` (if not
+// empty) is stored, and the firmware starts with the stored program.
+void power_on(host_robot &robot,
+              const std::function<void(host_robot &)> &prepare,
+              const std::vector<uint16_t> &bytecode);
+
+} // namespace aseba::host
