@@ -28,6 +28,8 @@ namespace
 // A client that reads nothing while this much waits for it is dropped, so a
 // stalled tool cannot make the simulator's memory grow without bound.
 constexpr size_t client_backlog_limit = 4 * 1024 * 1024;
+// Where a frame's message type lies (protocol.md §2).
+constexpr size_t type_offset = 4;
 
 uint16_t read_u16(const uint8_t *bytes)
 {
@@ -131,9 +133,13 @@ void Network::broadcast(const Member *from, const Frame &frame)
     frames_moved_++;
     if (observer_)
         observer_(frame);
-    for (auto &board : boards_) {
-        if (board.get() != from)
-            board->to_board.push_back(frame);
+    const bool user_event = read_u16(frame.data() + type_offset) < NODE_FIRST_SYSTEM_TYPE;
+    const bool from_board = from && from->board;
+    if (!from_board || !user_event || relay_robot_events_) {
+        for (auto &board : boards_) {
+            if (board.get() != from)
+                board->to_board.push_back(frame);
+        }
     }
     for (auto &client : clients_) {
         if (client.get() != from)

@@ -1,7 +1,8 @@
 // One Aseba network on a PC: simulated boards and TCP clients (Studio, the
 // console, the Debian tools) on a shared bus, the way a Bluetooth-to-TCP
 // switch joins real robots. Every frame from one member goes to all others,
-// so robots hear each other's events and every tool hears everything.
+// so robots hear each other's events and every tool hears everything; the
+// robots' radio between themselves can be cut (relay_robot_events).
 //
 // The bus moves whole frames only: bytes from a client or a board are cut
 // into frames (protocol.md §2) before they are passed on, so two clients
@@ -70,6 +71,16 @@ class Network
         return frames_moved_;
     }
 
+    // Whether a user event (type below 0x8000) that a board emits reaches the
+    // other boards; on by default. Off cuts the robots' radio between
+    // themselves, as for the paper's runs without communication: tools still
+    // hear such events, and protocol messages and a tool's events still
+    // reach every board.
+    void relay_robot_events(bool relay)
+    {
+        relay_robot_events_ = relay;
+    }
+
     // Called with every frame that crosses the bus (for status and logs).
     void observe(std::function<void(const Frame &)> observer)
     {
@@ -87,6 +98,7 @@ class Network
     std::vector<std::unique_ptr<Member>> boards_;
     std::vector<std::unique_ptr<Member>> clients_;
     uint64_t frames_moved_ = 0;
+    bool relay_robot_events_ = true;
     std::function<void(const Frame &)> observer_;
 };
 

@@ -5,3 +5,11 @@ arena_test_SOURCES := tests/arena/arena_file_test.cpp tests/arena/arena_sensing_
 arena_test_LIBS := aseba_arena aseba_host_robot aseba_flash aseba_epuck_firmware aseba_bootloader aseba_epuck_drivers \
                    aseba_host_board aseba_compiler aseba_node aseba_vm aseba_natives
 arena_test_LDLIBS := -lenki -lgtest -lgtest_main -pthread
+
+# The dangerous-area experiment (experiments/dangerous-areas) and the
+# network's switch for the robots' radio.
+TESTS += arena_experiment_test
+arena_experiment_test_SOURCES := tests/arena/dangerous_areas_test.cpp \
+                                 tests/arena/network_relay_test.cpp
+arena_experiment_test_LIBS = aseba_dangerous_areas $(arena_test_LIBS)
+arena_experiment_test_LDLIBS = $(arena_test_LDLIBS)

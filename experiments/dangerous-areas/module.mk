@@ -1,0 +1,20 @@
+# The 2007 Aseba paper's Fig. 5 experiment (dangerous-area avoidance) in the
+# simulated arena: the runs and measurement (a library, also for
+# tests/arena), and the dangerous-areas program that writes the CSV, the
+# figure and the table (docs/experiment.md).
+LIBRARIES += aseba_dangerous_areas
+aseba_dangerous_areas_SOURCES := experiments/dangerous-areas/experiment.cpp \
+                                 experiments/dangerous-areas/report.cpp
+
+PROGRAMS += dangerous-areas
+dangerous-areas_SOURCES := experiments/dangerous-areas/main.cpp
+# The arena's libraries are epuck-emu's (hal/host/module.mk, included later:
+# hence `=`).
+dangerous-areas_LIBS = aseba_dangerous_areas $(epuck-emu_LIBS)
+dangerous-areas_LDLIBS = $(epuck-emu_LDLIBS)
+
+# `make experiment`: the four conditions x 5 seeds of 60 s; writes
+# docs/experiment/dangerous-areas.{csv,svg} and the table in docs/experiment.md.
+.PHONY: experiment
+experiment: $(BUILD)/host/bin/dangerous-areas
+	$< --out docs/experiment --doc docs/experiment.md
