@@ -328,4 +328,54 @@ bool is_listening(uint16_t port)
     return false;
 }
 
+ScriptedPeer::ScriptedPeer(Answer answer)
+  : answer_(std::move(answer))
+{
+    listener_ = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t length = sizeof address;
+    if (listener_ < 0 ||
+        bind(listener_, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0 ||
+        listen(listener_, 1) != 0 ||
+        getsockname(listener_, reinterpret_cast<sockaddr *>(&address), &length) != 0)
+        throw std::runtime_error(std::string("scripted peer: ") + std::strerror(errno));
+    port_ = ntohs(address.sin_port);
+    thread_ = std::thread([this] { serve(); });
+}
+
+ScriptedPeer::~ScriptedPeer()
+{
+    // Ends a waiting accept() or read().
+    shutdown(listener_, SHUT_RDWR);
+    close(listener_);
+    thread_.join();
+}
+
+std::string ScriptedPeer::target() const
+{
+    return "tcp:127.0.0.1;" + std::to_string(port_);
+}
+
+void ScriptedPeer::serve()
+{
+    int fd = accept(listener_, nullptr, nullptr);
+    if (fd < 0)
+        return;
+    aseba::client::FrameAssembler assembler;
+    uint8_t buffer[4096];
+    ssize_t count;
+    while ((count = read(fd, buffer, sizeof buffer)) > 0) {
+        assembler.feed(buffer, size_t(count));
+        while (std::optional<aseba::client::Frame> frame = assembler.next()) {
+            for (const aseba::client::Frame &reply : answer_(*frame)) {
+                std::vector<uint8_t> bytes = aseba::client::serialize_frame(reply);
+                (void)!write(fd, bytes.data(), bytes.size());
+            }
+        }
+    }
+    close(fd);
+}
+
 } // namespace console_test

@@ -7,9 +7,13 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <sys/types.h>
+#include <thread>
 #include <vector>
+
+#include "tools/client/wire.hpp"
 
 namespace console_test
 {
@@ -110,6 +114,29 @@ class ReferenceProgram
 
   private:
     pid_t pid_ = -1;
+};
+
+// A scripted peer on a free loopback port, for clients under test: it
+// accepts one connection and answers every frame it receives with the
+// frames `answer` returns, in a thread, until destroyed.
+class ScriptedPeer
+{
+  public:
+    using Answer = std::function<std::vector<aseba::client::Frame>(const aseba::client::Frame &)>;
+    explicit ScriptedPeer(Answer answer);
+    ~ScriptedPeer();
+    ScriptedPeer(const ScriptedPeer &) = delete;
+    ScriptedPeer &operator=(const ScriptedPeer &) = delete;
+    // "tcp:127.0.0.1;PORT".
+    std::string target() const;
+
+  private:
+    void serve();
+
+    Answer answer_;
+    int listener_ = -1;
+    uint16_t port_ = 0;
+    std::thread thread_;
 };
 
 // Whether `name` is an executable in PATH.

@@ -7,12 +7,9 @@
 
 #include <map>
 #include <mutex>
-#include <netinet/in.h>
 #include <set>
-#include <sys/socket.h>
-#include <thread>
-#include <unistd.h>
 
+#include "console_support.hpp"
 #include "tools/client/flasher.hpp"
 
 using namespace aseba;
@@ -41,27 +38,12 @@ class FakeBootloader
   public:
     explicit FakeBootloader(BootloaderScript script)
       : script_(std::move(script))
+      , peer_([this](const Frame &frame) { return answer(frame); })
     {
-        listener_ = socket(AF_INET, SOCK_STREAM, 0);
-        sockaddr_in address{};
-        address.sin_family = AF_INET;
-        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-        socklen_t length = sizeof address;
-        bind(listener_, reinterpret_cast<sockaddr *>(&address), sizeof address);
-        listen(listener_, 1);
-        getsockname(listener_, reinterpret_cast<sockaddr *>(&address), &length);
-        port_ = ntohs(address.sin_port);
-        thread_ = std::thread([this] { serve(); });
-    }
-    ~FakeBootloader()
-    {
-        shutdown(listener_, SHUT_RDWR);
-        close(listener_);
-        thread_.join();
     }
     std::string target() const
     {
-        return "tcp:127.0.0.1;" + std::to_string(port_);
+        return peer_.target();
     }
     std::map<uint16_t, std::vector<uint8_t>> programmed()
     {
@@ -70,71 +52,53 @@ class FakeBootloader
     }
 
   private:
-    void send(int fd, const Message &message)
+    std::vector<Frame> answer(const Frame &frame)
     {
-        std::vector<uint8_t> bytes = serialize_frame(encode(message, NODE_ID));
-        (void)!write(fd, bytes.data(), bytes.size());
-    }
-
-    void serve()
-    {
-        int fd = accept(listener_, nullptr, nullptr);
-        if (fd < 0)
-            return;
-        FrameAssembler assembler;
-        uint8_t buffer[4096];
-        ssize_t count;
-        bool application = false;
-        std::optional<uint16_t> page;
-        std::vector<uint8_t> data;
-        while ((count = read(fd, buffer, sizeof buffer)) > 0) {
-            assembler.feed(buffer, size_t(count));
-            while (std::optional<Frame> frame = assembler.next()) {
-                Message message = decode(*frame);
-                if (const auto *command = std::get_if<NodeCommand>(&message)) {
-                    if (command->type == NODE_MSG_REBOOT && command->dest == NODE_ID)
-                        send(fd, BootloaderDescription{ PAGE_SIZE, PAGES_START, PAGES_COUNT });
-                    else if (command->type == MSG_BOOTLOADER_RESET && command->dest == NODE_ID) {
-                        send(fd, BootloaderAck{ 0, {} });
-                        application = true;
-                    }
-                } else if (std::holds_alternative<ListNodes>(message) && application) {
-                    send(fd, NodePresent{ PROTOCOL_VERSION });
-                } else if (const auto *write_page = std::get_if<BootloaderPageCommand>(&message)) {
-                    page = write_page->page;
-                    data.clear();
-                    if (script_.lose_write_ack_once.erase(*page) == 0)
-                        send(fd, BootloaderAck{ 0, {} });
-                } else if (const auto *chunk = std::get_if<BootloaderPageDataWrite>(&message)) {
-                    if (!page)
-                        continue;
-                    data.insert(data.end(), chunk->data.begin(), chunk->data.end());
-                    if (data.size() < PAGE_SIZE)
-                        continue;
-                    if (script_.refuse == page) {
-                        send(fd,
-                             BootloaderAck{ BOOTLOADER_ERROR_PROGRAMMING_FAILED, FAILED_ADDRESS });
-                    } else {
-                        {
-                            std::lock_guard<std::mutex> lock(mutex_);
-                            programmed_[*page] = data;
-                        }
-                        if (script_.lose_page_ack_once.erase(*page) == 0)
-                            send(fd, BootloaderAck{ 0, {} });
-                    }
-                    page.reset();
-                }
+        std::vector<Frame> replies;
+        auto send = [&](const Message &message) { replies.push_back(encode(message, NODE_ID)); };
+        Message message = decode(frame);
+        if (const auto *command = std::get_if<NodeCommand>(&message)) {
+            if (command->type == NODE_MSG_REBOOT && command->dest == NODE_ID)
+                send(BootloaderDescription{ PAGE_SIZE, PAGES_START, PAGES_COUNT });
+            else if (command->type == MSG_BOOTLOADER_RESET && command->dest == NODE_ID) {
+                send(BootloaderAck{ 0, {} });
+                application_ = true;
             }
+        } else if (std::holds_alternative<ListNodes>(message) && application_) {
+            send(NodePresent{ PROTOCOL_VERSION });
+        } else if (const auto *write_page = std::get_if<BootloaderPageCommand>(&message)) {
+            page_ = write_page->page;
+            data_.clear();
+            if (script_.lose_write_ack_once.erase(*page_) == 0)
+                send(BootloaderAck{ 0, {} });
+        } else if (const auto *chunk = std::get_if<BootloaderPageDataWrite>(&message)) {
+            if (!page_)
+                return replies;
+            data_.insert(data_.end(), chunk->data.begin(), chunk->data.end());
+            if (data_.size() < PAGE_SIZE)
+                return replies;
+            if (script_.refuse == page_) {
+                send(BootloaderAck{ BOOTLOADER_ERROR_PROGRAMMING_FAILED, FAILED_ADDRESS });
+            } else {
+                {
+                    std::lock_guard<std::mutex> lock(mutex_);
+                    programmed_[*page_] = data_;
+                }
+                if (script_.lose_page_ack_once.erase(*page_) == 0)
+                    send(BootloaderAck{ 0, {} });
+            }
+            page_.reset();
         }
-        close(fd);
+        return replies;
     }
 
     BootloaderScript script_;
-    int listener_ = -1;
-    uint16_t port_ = 0;
-    std::thread thread_;
+    bool application_ = false;
+    std::optional<uint16_t> page_;
+    std::vector<uint8_t> data_;
     std::mutex mutex_;
     std::map<uint16_t, std::vector<uint8_t>> programmed_;
+    console_test::ScriptedPeer peer_; // last: it answers from its thread at once
 };
 
 std::vector<FlashPage> test_pages(uint16_t count)

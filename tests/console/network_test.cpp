@@ -143,96 +143,47 @@ TEST(NetworkModel, SilentTargetTimesOut)
 namespace
 {
 
-// A scripted node on a loopback socket: it answers LIST_NODES and
-// GET_NODE_DESCRIPTION like a protocol-5 node (id 5, "fake"), first sending
-// a malformed frame, and also speaks for a node 6 of protocol version 6
-// that hosts must ignore.
-class FakeNode
+// A scripted node: it answers LIST_NODES and GET_NODE_DESCRIPTION like a
+// protocol-5 node (id 5, "fake"), first sending a malformed frame, and also
+// speaks for a node 6 of protocol version 6 that hosts must ignore.
+std::vector<Frame> fake_node_answer(const Frame &frame)
 {
-  public:
-    FakeNode()
-    {
-        listener_ = socket(AF_INET, SOCK_STREAM, 0);
-        sockaddr_in address{};
-        address.sin_family = AF_INET;
-        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-        socklen_t length = sizeof address;
-        bind(listener_, reinterpret_cast<sockaddr *>(&address), sizeof address);
-        listen(listener_, 1);
-        getsockname(listener_, reinterpret_cast<sockaddr *>(&address), &length);
-        port_ = ntohs(address.sin_port);
-        thread_ = std::thread([this] { serve(); });
+    std::vector<Frame> replies;
+    auto send = [&](const Message &message, uint16_t source) {
+        replies.push_back(encode(message, source));
+    };
+    Message message = decode(frame);
+    if (std::holds_alternative<ListNodes>(message)) {
+        // An odd-length user event: malformed, to be dropped.
+        replies.push_back(Frame{ 5, 1, { 1, 2, 3 } });
+        send(NodePresent{ 5 }, 5);
+        send(NodePresent{ 6 }, 6);
+    } else if (const auto *get = std::get_if<GetNodeDescription>(&message)) {
+        uint16_t version = get->dest == 6 ? 6 : 5;
+        send(Description{ "fake", version, 100, 16, 40, 2, 1, 1 }, get->dest);
+        send(NamedVariableDescription{ { "id", 1 } }, get->dest);
+        send(NamedVariableDescription{ { "table", 20 } }, get->dest);
+        send(LocalEventDescription{ { "tick", "timer" } }, get->dest);
+        send(NativeFunctionDescription{ { "f", "", { { "x", 1 } } } }, get->dest);
+    } else if (const auto *request = std::get_if<GetVariables>(&message)) {
+        // Answers in two parts, the second first (hosts merge by start).
+        uint16_t half = uint16_t(request->length / 2);
+        std::vector<int16_t> high, low;
+        for (uint16_t i = 0; i < request->length; i++)
+            (i < half ? low : high).push_back(int16_t(request->start + i));
+        send(Variables{ uint16_t(request->start + half), high }, 5);
+        send(Variables{ request->start, low }, 5);
     }
-    ~FakeNode()
-    {
-        shutdown(listener_, SHUT_RDWR);
-        close(listener_);
-        thread_.join();
-    }
-    uint16_t port() const
-    {
-        return port_;
-    }
-
-  private:
-    void send(int fd, const Message &message, uint16_t source)
-    {
-        std::vector<uint8_t> bytes = serialize_frame(encode(message, source));
-        (void)!write(fd, bytes.data(), bytes.size());
-    }
-
-    void serve()
-    {
-        int fd = accept(listener_, nullptr, nullptr);
-        if (fd < 0)
-            return;
-        FrameAssembler assembler;
-        uint8_t buffer[1024];
-        ssize_t count;
-        while ((count = read(fd, buffer, sizeof buffer)) > 0) {
-            assembler.feed(buffer, size_t(count));
-            while (std::optional<Frame> frame = assembler.next()) {
-                Message message = decode(*frame);
-                if (std::holds_alternative<ListNodes>(message)) {
-                    // An odd-length user event: malformed, to be dropped.
-                    Frame odd{ 5, 1, { 1, 2, 3 } };
-                    std::vector<uint8_t> bytes = serialize_frame(odd);
-                    (void)!write(fd, bytes.data(), bytes.size());
-                    send(fd, NodePresent{ 5 }, 5);
-                    send(fd, NodePresent{ 6 }, 6);
-                } else if (const auto *get = std::get_if<GetNodeDescription>(&message)) {
-                    uint16_t version = get->dest == 6 ? 6 : 5;
-                    send(fd, Description{ "fake", version, 100, 16, 40, 2, 1, 1 }, get->dest);
-                    send(fd, NamedVariableDescription{ { "id", 1 } }, get->dest);
-                    send(fd, NamedVariableDescription{ { "table", 20 } }, get->dest);
-                    send(fd, LocalEventDescription{ { "tick", "timer" } }, get->dest);
-                    send(fd, NativeFunctionDescription{ { "f", "", { { "x", 1 } } } }, get->dest);
-                } else if (const auto *request = std::get_if<GetVariables>(&message)) {
-                    // Answers in two parts, the second first (hosts merge by start).
-                    uint16_t half = uint16_t(request->length / 2);
-                    std::vector<int16_t> high, low;
-                    for (uint16_t i = 0; i < request->length; i++)
-                        (i < half ? low : high).push_back(int16_t(request->start + i));
-                    send(fd, Variables{ uint16_t(request->start + half), high }, 5);
-                    send(fd, Variables{ request->start, low }, 5);
-                }
-            }
-        }
-        close(fd);
-    }
-
-    int listener_ = -1;
-    uint16_t port_ = 0;
-    std::thread thread_;
-};
+    return replies;
+}
 
 } // namespace
 
 TEST(NetworkModel, AssemblesDescriptionsAndSurvivesBadFrames)
 {
-    FakeNode fake;
+    console_test::ScriptedPeer fake(fake_node_answer);
     Network network;
-    network.connect("tcp:127.0.0.1;" + std::to_string(fake.port()));
+    network.connect(fake.target());
     std::vector<std::string> errors;
     network.set_listener([&](const ReceivedFrame &frame) {
         if (!frame.message)
