@@ -24,6 +24,7 @@ namespace
 
 constexpr int PROGRESS_BAR_WIDTH = 30;
 constexpr Milliseconds PROGRESS_REDRAW{ 100 };
+constexpr Milliseconds NO_REBOOT_ENTER_TIMEOUT{ 10000 };
 
 // The pages of a Microchip HEX application image, checked to hold the
 // descriptor without which the bootloader would never start it.
@@ -166,6 +167,8 @@ int command_flash(Session &session)
 
     client::FlashSettings settings;
     settings.reboot_first = !options.no_reboot;
+    if (options.no_reboot) // a person switches the robots on meanwhile
+        settings.enter_timeout = std::max(NO_REBOOT_ENTER_TIMEOUT, options.timeout);
     settings.page_timeout = std::max(settings.page_timeout, options.timeout);
     settings.cancelled = interrupted;
     std::cout << "flashing " << options.arguments[0] << " (" << pages.size() << " pages of "

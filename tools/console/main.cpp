@@ -158,10 +158,11 @@ the robot must answer as a node again. Robots progress independently; a page
 whose acknowledgement is lost is sent again (3 attempts). A progress bar is
 shown on a terminal, then one line per robot. A robot whose image is invalid
 waits in its bootloader and does not answer as a node: name it by id with
---node ID to flash it anyway. --no-reboot: the robots already wait in their
-bootloaders (e.g. just after power-on). An interrupted flashing leaves the
-robot in its bootloader, which waits for a new one. Exit status 1 when any
-robot failed.
+--node ID to flash it anyway. --no-reboot sends no REBOOT and waits up to
+10 s (or --timeout) for each robot's bootloader to describe itself: start
+the command, then switch the robots on or reset them. An interrupted
+flashing leaves the robot in its bootloader, which waits for a new one.
+Exit status 1 when any robot failed.
 )" },
 };
 
