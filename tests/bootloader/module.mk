@@ -20,3 +20,10 @@ bootloader_protocol_test_LDLIBS := -lgtest -lgtest_main -pthread
 TESTS += bootloader_linker_scripts_test
 bootloader_linker_scripts_test_SOURCES := tests/bootloader/linker_scripts_test.cpp
 bootloader_linker_scripts_test_LDLIBS := -lgtest -lgtest_main -pthread
+
+TESTS += bootloader_tiny_upload_test
+bootloader_tiny_upload_test_SOURCES := tests/bootloader/tiny_upload_test.cpp \
+                                       tests/bootloader/tiny_simulator.cpp
+bootloader_tiny_upload_test_LIBS := aseba_tiny_upload aseba_client aseba_flash aseba_bootloader \
+                                    aseba_host_board aseba_node
+bootloader_tiny_upload_test_LDLIBS := -lgtest -lgtest_main -pthread

@@ -1,13 +1,17 @@
 // epuck-image: the last step of `make dspic30`. Reads the application and
 // bootloader HEX files that XC16 wrote, adds the application's descriptor,
-// and writes the two images of tools/flash/epuck_image.hpp.
+// and writes the two images of tools/flash/epuck_image.hpp. With `install`
+// first, it installs the factory image on a robot through the factory Tiny
+// Bootloader (install_command.hpp).
 
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "tools/flash/epuck_image.hpp"
+#include "tools/flash/install_command.hpp"
 
 extern "C" {
 #include "bootloader/boot_application.h"
@@ -18,6 +22,7 @@ namespace
 
 constexpr const char *usage =
   R"(usage: epuck-image APPLICATION.hex BOOTLOADER.hex OUTPUT.hex FACTORY.hex
+       epuck-image install --port DEVICE [--id N] [--wait SECONDS] FACTORY.hex
 
 Builds the e-puck's images from the XC16 HEX files of the application
 (linked with linker/epuck-app.gld) and of the Aseba bootloader (linked with
@@ -28,6 +33,9 @@ linker/epuck-bootloader.gld):
   FACTORY.hex  the bootloader, the application and its descriptor, for the
                first installation through the factory Tiny Bootloader or a
                programmer
+
+The second form installs FACTORY.hex on a robot through its factory Tiny
+Bootloader (`epuck-image install --help` tells more).
 
 Options:
   --help       show this text
@@ -64,6 +72,9 @@ aseba::flash::ProgramImage read_image(const std::string &path, uint32_t end)
 
 int main(int argc, char **argv)
 {
+    if (argc >= 2 && std::string(argv[1]) == "install")
+        return aseba::flash::run_install_command(
+          std::vector<std::string>(argv + 2, argv + argc), std::cout, std::cerr);
     for (int i = 1; i < argc; i++) {
         if (std::string(argv[i]) == "--help") {
             std::cout << usage;

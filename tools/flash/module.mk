@@ -6,7 +6,15 @@ LIBRARIES += aseba_flash
 aseba_flash_SOURCES := tools/flash/hex_image.cpp tools/flash/epuck_image.cpp \
                        tools/flash/tiny_bootloader.cpp
 
-# epuck-image: the last step of `make dspic30` (hal/dspic30/module.mk).
+# aseba_tiny_upload: sends those packets to the Tiny Bootloader (its
+# protocol over any byte link, the serial link through aseba_client's
+# transport) and the `epuck-image install` command.
+LIBRARIES += aseba_tiny_upload
+aseba_tiny_upload_SOURCES := tools/flash/tiny_upload.cpp tools/flash/tiny_serial_link.cpp \
+                             tools/flash/install_command.cpp
+
+# epuck-image: the last step of `make dspic30` (hal/dspic30/module.mk), and
+# `epuck-image install` for the first installation on a robot.
 PROGRAMS += epuck-image
 epuck-image_SOURCES := tools/flash/epuck_image_main.cpp
-epuck-image_LIBS := aseba_flash aseba_node
+epuck-image_LIBS := aseba_tiny_upload aseba_client aseba_flash aseba_node
