@@ -44,6 +44,12 @@ Bluetooth switch.
 
 Options:
   --port N          TCP port of the network (default 33333)
+  --robot-ports B   also give each robot a port of its own, as each robot of
+                    the reference simulator has: robot i (from 0: node id
+                    i+1, or the arena file's i-th robot) listens on B+i too,
+                    where a tool is linked to it alone, as by Bluetooth: the
+                    tool hears that robot only and reaches that robot only,
+                    while the robot's frames still reach the whole network
   --robots N        number of robots, node ids 1..N (default 1)
   --duration S      stop after S seconds (default: run until interrupted)
   --load FILE       compile FILE (an .aesl project or a script) for the e-puck
@@ -96,6 +102,7 @@ void request_stop(int)
 
 struct Options {
     uint16_t port = 33333;
+    uint16_t robot_ports = 0; // the first robot's own port; 0: none
     unsigned robots = 1;
     double duration_seconds = 0;
     std::string load;
@@ -144,6 +151,8 @@ Options parse_options(int argc, char **argv)
             std::exit(0);
         } else if (argument == "--port") {
             options.port = uint16_t(parse_number("--port", value(), 1, 65535));
+        } else if (argument == "--robot-ports") {
+            options.robot_ports = uint16_t(parse_number("--robot-ports", value(), 1, 65535));
         } else if (argument == "--robots") {
             options.robots = unsigned(parse_number("--robots", value(), 1, 1000));
             options.robots_given = true;
@@ -228,6 +237,32 @@ bool save_memories(const Options &options, size_t count, RobotAt robot_at)
     return saved;
 }
 
+// With --robot-ports, opens each robot's own port.
+template<typename BoardAt>
+void listen_robot_ports(const Options &options,
+                        aseba::host::Network &network,
+                        size_t count,
+                        BoardAt board_at)
+{
+    if (options.robot_ports == 0)
+        return;
+    constexpr size_t highest_port = 65535;
+    if (options.robot_ports + count - 1 > highest_port)
+        fail("--robot-ports " + std::to_string(options.robot_ports) + " leaves no port for robot " +
+             std::to_string(count));
+    for (size_t i = 0; i < count; i++)
+        network.listen_robot(&board_at(i), uint16_t(options.robot_ports + i));
+}
+
+// How the start-up line tells the robots' own ports, if any.
+std::string robot_ports_note(const Options &options, size_t count)
+{
+    if (options.robot_ports == 0)
+        return "";
+    return " (each robot alone on tcp:port=" + std::to_string(options.robot_ports) + " to " +
+           std::to_string(options.robot_ports + count - 1) + ")";
+}
+
 // The program of --load, compiled for the e-puck; exits with the compiler's
 // message when it does not compile.
 aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &bytecode)
@@ -286,6 +321,10 @@ int run_arena(const Options &options,
     aseba::host::Network &network = simulation.network();
     try {
         network.listen(options.port);
+        listen_robot_ports(options,
+                           network,
+                           simulation.robot_count(),
+                           [&](size_t i) -> hal_board & { return simulation.board(i); });
     } catch (const std::exception &error) {
         fail(error.what());
     }
@@ -293,7 +332,7 @@ int run_arena(const Options &options,
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
 
     std::printf("epuck-emu: arena %s (%.0f x %.0f cm, %zu ground area%s), %zu robot%s on "
-                "tcp:port=%u, seed %u, %s speed%s%s\n",
+                "tcp:port=%u%s, seed %u, %s speed%s%s\n",
                 options.arena.c_str(),
                 arena.width,
                 arena.height,
@@ -302,6 +341,7 @@ int run_arena(const Options &options,
                 arena.robots.size(),
                 arena.robots.size() == 1 ? "" : "s",
                 unsigned(options.port),
+                robot_ports_note(options, arena.robots.size()).c_str(),
                 unsigned(options.seed),
                 options.realtime ? "real-time" : "maximum",
                 options.load.empty() ? "" : ", running ",
@@ -391,16 +431,20 @@ int main(int argc, char **argv)
             aseba::host::power_on(*robot, prepare, bytecode);
             robots.push_back(std::move(robot));
         }
+        listen_robot_ports(options, network, robots.size(), [&](size_t i) -> hal_board & {
+            return robots[i]->board;
+        });
     } catch (const std::exception &error) {
         fail(error.what());
     }
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
 
-    std::printf("epuck-emu: %u robot%s on tcp:port=%u%s%s\n",
+    std::printf("epuck-emu: %u robot%s on tcp:port=%u%s%s%s\n",
                 options.robots,
                 options.robots == 1 ? "" : "s",
                 unsigned(options.port),
+                robot_ports_note(options, robots.size()).c_str(),
                 options.load.empty() ? "" : ", running ",
                 options.load.c_str());
     std::fflush(stdout);

@@ -3,6 +3,7 @@
 
 #include "network.hpp"
 
+#include <algorithm>
 #include <arpa/inet.h>
 #include <cerrno>
 #include <cstdio>
@@ -72,6 +73,7 @@ struct Network::Member {
     Network *network = nullptr;
     hal_board *board = nullptr; // for a board
     int fd = -1;                // for a client
+    Member *robot = nullptr;    // for a client linked to this board alone
     FrameReader reader;
     std::deque<Frame> to_board;
     std::string to_client;
@@ -81,13 +83,13 @@ Network::Network() = default;
 
 Network::~Network()
 {
-    for (int fd : listeners_)
-        close(fd);
+    for (const Listener &listener : listeners_)
+        close(listener.fd);
     for (auto &client : clients_)
         close(client->fd);
 }
 
-void Network::listen(uint16_t port)
+int Network::open_listener(uint16_t &port)
 {
     int fd = socket(AF_INET, SOCK_STREAM, 0);
     if (fd < 0)
@@ -105,8 +107,30 @@ void Network::listen(uint16_t port)
         throw std::runtime_error("cannot listen on TCP port " + std::to_string(port) + ": " +
                                  reason);
     }
+    socklen_t length = sizeof address;
+    getsockname(fd, reinterpret_cast<sockaddr *>(&address), &length);
+    port = ntohs(address.sin_port);
     set_non_blocking(fd);
-    listeners_.push_back(fd);
+    return fd;
+}
+
+uint16_t Network::listen(uint16_t port)
+{
+    int fd = open_listener(port);
+    listeners_.push_back({ fd, nullptr });
+    return port;
+}
+
+uint16_t Network::listen_robot(hal_board *board, uint16_t port)
+{
+    auto attached = std::find_if(boards_.begin(), boards_.end(), [board](const auto &member) {
+        return member->board == board;
+    });
+    if (attached == boards_.end())
+        throw std::invalid_argument("listen_robot: the board is not on the network");
+    int fd = open_listener(port);
+    listeners_.push_back({ fd, attached->get() });
+    return port;
 }
 
 void Network::attach(hal_board *board)
@@ -133,6 +157,11 @@ void Network::broadcast(const Member *from, const Frame &frame)
     frames_moved_++;
     if (observer_)
         observer_(frame);
+    if (from && from->robot) {
+        // A client linked directly to one robot talks to it alone.
+        from->robot->to_board.push_back(frame);
+        return;
+    }
     const bool user_event = read_u16(frame.data() + type_offset) < NODE_FIRST_SYSTEM_TYPE;
     const bool from_board = from && from->board;
     if (!from_board || !user_event || relay_robot_events_) {
@@ -141,8 +170,9 @@ void Network::broadcast(const Member *from, const Frame &frame)
                 board->to_board.push_back(frame);
         }
     }
+    // Direct clients hear their own robot only.
     for (auto &client : clients_) {
-        if (client.get() != from)
+        if (client.get() != from && (client->robot == nullptr || client->robot == from))
             client->to_client.append(frame.begin(), frame.end());
     }
 }
@@ -180,12 +210,15 @@ void Network::service(int timeout_ms)
     // that robots answer at their next poll rather than after another wait.
     struct DeliverOnReturn {
         Network *network;
-        ~DeliverOnReturn() { network->deliver_to_boards(); }
+        ~DeliverOnReturn()
+        {
+            network->deliver_to_boards();
+        }
     } deliver_on_return{ this };
 
     std::vector<pollfd> fds;
-    for (int fd : listeners_)
-        fds.push_back({ fd, POLLIN, 0 });
+    for (const Listener &listener : listeners_)
+        fds.push_back({ listener.fd, POLLIN, 0 });
     for (auto &client : clients_)
         fds.push_back({ client->fd, short(POLLIN | (client->to_client.empty() ? 0 : POLLOUT)), 0 });
     if (poll(fds.data(), fds.size(), timeout_ms) <= 0)
@@ -194,7 +227,7 @@ void Network::service(int timeout_ms)
     for (size_t i = 0; i < listeners_.size(); i++) {
         if (!(fds[i].revents & POLLIN))
             continue;
-        int fd = accept(listeners_[i], nullptr, nullptr);
+        int fd = accept(listeners_[i].fd, nullptr, nullptr);
         if (fd < 0)
             continue;
         set_non_blocking(fd);
@@ -204,6 +237,7 @@ void Network::service(int timeout_ms)
         auto client = std::make_unique<Member>();
         client->network = this;
         client->fd = fd;
+        client->robot = listeners_[i].robot;
         clients_.push_back(std::move(client));
     }
 

@@ -7,6 +7,10 @@
 // The bus moves whole frames only: bytes from a client or a board are cut
 // into frames (protocol.md §2) before they are passed on, so two clients
 // writing at once never interleave inside a frame on a robot's link.
+//
+// A robot may also have ports of its own (listen_robot), as each robot of the
+// reference simulator has: a client there is like a tool linked to that robot
+// alone by Bluetooth.
 
 #pragma once
 
@@ -50,12 +54,20 @@ class Network
     Network(const Network &) = delete;
     Network &operator=(const Network &) = delete;
 
-    // Accepts clients on `port` of the loopback and other interfaces; throws
-    // std::runtime_error with the system's reason when it cannot.
-    void listen(uint16_t port);
+    // Accepts clients on `port` of the loopback and other interfaces (0: a
+    // port the system chooses); returns the port. Throws std::runtime_error
+    // with the system's reason when it cannot.
+    uint16_t listen(uint16_t port);
 
     // Joins a board: its link output comes to the bus, the bus feeds its link.
     void attach(hal_board *board);
+
+    // Accepts clients linked directly to `board` (attached before) on `port`,
+    // as listen does; returns the port. Such a client hears that board's
+    // frames only, and its frames reach that board only, not the bus nor
+    // the board's other direct clients; the board's frames still reach the
+    // bus. Throws std::invalid_argument for a board not attached.
+    uint16_t listen_robot(hal_board *board, uint16_t port);
 
     // Moves frames: accepts clients, reads and writes sockets (waiting up to
     // `timeout_ms` for one of them), and feeds boards what their links can
@@ -89,12 +101,19 @@ class Network
 
   private:
     struct Member;
+    // A listening socket; its clients join the bus, or link to `robot` alone.
+    struct Listener {
+        int fd;
+        Member *robot;
+    };
+    // A listening socket on `port`, which it sets to the port chosen for 0.
+    static int open_listener(uint16_t &port);
     void broadcast(const Member *from, const Frame &frame);
     void deliver_to_boards();
     void close_client(size_t index, const char *reason);
     static void board_output(void *context, const uint8_t *bytes, uint16_t count);
 
-    std::vector<int> listeners_;
+    std::vector<Listener> listeners_;
     std::vector<std::unique_ptr<Member>> boards_;
     std::vector<std::unique_ptr<Member>> clients_;
     uint64_t frames_moved_ = 0;

@@ -13,3 +13,9 @@ arena_experiment_test_SOURCES := tests/arena/dangerous_areas_test.cpp \
                                  tests/arena/network_relay_test.cpp
 arena_experiment_test_LIBS = aseba_dangerous_areas $(arena_test_LIBS)
 arena_experiment_test_LDLIBS = $(arena_test_LDLIBS)
+
+# The network's per-robot ports on bare host boards and loopback sockets.
+TESTS += network_robot_port_test
+network_robot_port_test_SOURCES := tests/arena/network_robot_port_test.cpp
+network_robot_port_test_LIBS := aseba_host_board
+network_robot_port_test_LDLIBS := -lgtest -lgtest_main -pthread
