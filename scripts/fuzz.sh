@@ -25,14 +25,17 @@ declare -A sources=(
             tests/node/node_harness.cpp tests/node/reference_decoder.cpp"
     [compiler]="$compiler_sources tests/fuzz/compiler_fuzzer.cpp"
     [client]="$client_sources tests/fuzz/client_fuzzer.cpp"
+    [files]="$vm_sources $(library aseba_node) $(library aseba_flash) hal/host/arena_file.cpp
+             tests/fuzz/files_fuzzer.cpp"
 )
-declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="")
-declare -A max_length=([vm]=1024 [node]=4096 [compiler]=4096 [client]=4096)
+declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="" [files]="")
+declare -A max_length=([vm]=1024 [node]=4096 [compiler]=4096 [client]=4096 [files]=8192)
 # Folders of real inputs a target starts from, besides its own corpus.
-declare -A seeds=([compiler]="examples tests/compiler/programs")
+declare -A seeds=([compiler]="examples tests/compiler/programs"
+                  [files]="tests/bootloader/hex tests/arena/data")
 
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client)
+[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba)
