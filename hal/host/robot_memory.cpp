@@ -4,8 +4,6 @@
 
 #include <array>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <sys/stat.h>
 
@@ -32,16 +30,7 @@ flash::ProgramImage placeholder_application()
 
 flash::ProgramImage read_application_file(const std::string &path)
 {
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-        throw std::runtime_error(path + ": cannot be read");
-    std::ostringstream text;
-    text << file.rdbuf();
-    try {
-        return flash::read_microchip_hex(text.str(), BOOT_APPLICATION_END);
-    } catch (const flash::HexError &error) {
-        throw std::runtime_error(path + ": " + error.what());
-    }
+    return flash::read_microchip_hex_file(path, BOOT_APPLICATION_END);
 }
 
 void install_application(hal_board &board, const flash::ProgramImage &image)

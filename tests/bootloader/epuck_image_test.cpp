@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/bootloader/test_images.hpp"
 #include "tools/flash/epuck_image.hpp"
 #include "tools/flash/tiny_bootloader.hpp"
 
@@ -19,34 +20,10 @@ namespace
 using aseba::flash::HexError;
 using aseba::flash::ProgramImage;
 
-constexpr uint32_t bootloader_base = 0x016F00;
-constexpr uint32_t bootloader_reset = 0x016F40;
-
-// A bootloader image as linker/epuck-bootloader.gld lays it out.
-ProgramImage bootloader_image()
-{
-    ProgramImage image;
-    image.instructions[0x0] = 0x040000 | (bootloader_reset & 0xFFFF); // GOTO 0x016F40
-    image.instructions[0x2] = bootloader_reset >> 16;
-    for (uint32_t k = 0; k < 62; k++) {
-        image.instructions[0x04 + 2 * k] = 0x100 + 4 * (1 + k);
-        image.instructions[0x84 + 2 * k] = bootloader_base + 0x100;
-    }
-    for (uint32_t pc = bootloader_base; pc < bootloader_base + 0x200; pc += 2)
-        image.instructions[pc] = pc; // its code
-    image.configuration[0xF80000] = 0xC706;
-    return image;
-}
-
-ProgramImage application_image()
-{
-    std::ifstream file("tests/bootloader/hex/application.hex", std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    ProgramImage image = aseba::flash::read_microchip_hex(text.str(), 0x16340);
-    aseba::flash::add_application_descriptor(image);
-    return image;
-}
+using bootloader_test::application_image;
+using bootloader_test::bootloader_base;
+using bootloader_test::bootloader_image;
+using bootloader_test::bootloader_reset;
 
 void expect_refused(const ProgramImage &image, const std::string &message)
 {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "tests/bootloader/xmodem.hpp"
 #include "tools/flash/hex_image.hpp"
 
 extern "C" {
@@ -92,18 +93,6 @@ INSTANTIATE_TEST_SUITE_P(
                   Corrupt{ "count_mismatch.hex", "byte count does not match" },
                   Corrupt{ "no_colon.hex", "must start with ':'" }));
 
-// CRC-16/XMODEM (polynomial 0x1021, seed 0), one bit at a time.
-uint16_t crc_xmodem(const std::vector<uint8_t> &bytes)
-{
-    uint16_t crc = 0;
-    for (uint8_t byte : bytes) {
-        crc ^= static_cast<uint16_t>(byte << 8);
-        for (int bit = 0; bit < 8; bit++)
-            crc = static_cast<uint16_t>((crc & 0x8000) ? (crc << 1) ^ 0x1021 : crc << 1);
-    }
-    return crc;
-}
-
 uint32_t instruction_of(const aseba::flash::Page &page, std::size_t index)
 {
     return static_cast<uint32_t>(page.bytes[4 * index] | page.bytes[4 * index + 1] << 8 |
@@ -150,7 +139,7 @@ TEST(Pages, CoverTheApplicationFromRowFourAndTheDescriptor)
         for (int b = 0; b < 3; b++)
             bytes.push_back(static_cast<uint8_t>(value >> (8 * b)));
     }
-    EXPECT_EQ(instruction_of(descriptor, 3), crc_xmodem(bytes));
+    EXPECT_EQ(instruction_of(descriptor, 3), bootloader_test::crc_xmodem(bytes));
 }
 
 TEST(Pages, AnApplicationWithoutResetSlotHasNoDescriptor)

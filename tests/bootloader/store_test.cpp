@@ -9,6 +9,8 @@
 #include <optional>
 #include <vector>
 
+#include "tests/bootloader/xmodem.hpp"
+
 extern "C" {
 #include "bootloader/bytecode_store.h"
 #include "hal/host/host_board.h"
@@ -62,19 +64,6 @@ bool save_bytecode(hal_board *board, const Words &words)
     return epuck_store_save_bytecode(board, words.data(), static_cast<uint16_t>(words.size()));
 }
 
-// CRC-16/XMODEM as protocol.md §9 defines it, written here independently of
-// the firmware's node_crc16.
-uint16_t xmodem(const std::vector<uint8_t> &bytes)
-{
-    uint16_t crc = 0;
-    for (uint8_t byte : bytes) {
-        crc ^= static_cast<uint16_t>(byte << 8);
-        for (int bit = 0; bit < 8; bit++)
-            crc = static_cast<uint16_t>((crc & 0x8000) ? (crc << 1) ^ 0x1021 : crc << 1);
-    }
-    return crc;
-}
-
 // Writes a slot exactly as bytecode_store.h documents the format, straight
 // into the board's flash.
 void write_slot(hal_board *board,
@@ -93,7 +82,7 @@ void write_slot(hal_board *board,
     add(static_cast<uint16_t>(words.size()));
     for (uint16_t word : words)
         add(word);
-    uint16_t crc = xmodem(checked);
+    uint16_t crc = bootloader_test::crc_xmodem(checked);
     std::vector<uint8_t> stream(checked.begin(), checked.begin() + 6);
     stream.push_back(static_cast<uint8_t>(crc & 0xFF));
     stream.push_back(static_cast<uint8_t>(crc >> 8));
@@ -110,7 +99,7 @@ TEST(Crc, MatchesTheXmodemCheckValue)
 {
     // The catalogue check value of CRC-16/XMODEM over "123456789".
     std::vector<uint8_t> text{ '1', '2', '3', '4', '5', '6', '7', '8', '9' };
-    EXPECT_EQ(xmodem(text), 0x31C3);
+    EXPECT_EQ(bootloader_test::crc_xmodem(text), 0x31C3);
 }
 
 TEST(Layout, FitsTheLinkerRegion)

@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/bootloader/test_images.hpp"
 #include "tests/bootloader/tiny_simulator.hpp"
 #include "tools/flash/epuck_image.hpp"
 #include "tools/flash/install_command.hpp"
@@ -39,9 +40,10 @@ using aseba::flash::ProgramImage;
 using aseba::test::TinySimulator;
 using std::chrono::milliseconds;
 
-constexpr uint32_t bootloader_base = 0x016F00;
-constexpr uint32_t bootloader_reset = 0x016F40; // the synthetic bootloader's start-up
-constexpr uint32_t bootloader_code_end = bootloader_base + 0x200;
+using bootloader_test::bootloader_base;
+using bootloader_test::bootloader_code_end;
+using bootloader_test::bootloader_image;
+using bootloader_test::bootloader_reset;
 constexpr uint32_t application_entry = 0x100; // bootloader/README.md: slot 0 of its table
 constexpr uint32_t erased = 0xFFFFFF;
 constexpr uint32_t row_span = 0x40;
@@ -51,31 +53,9 @@ constexpr uint16_t factory_robot_number = 1234;
 // trampoline row (fact sheet §4.3).
 constexpr std::size_t rows_sent = (bootloader_code_end - 2) / row_span + 1 + 1;
 
-// A bootloader image as linker/epuck-bootloader.gld lays it out (as in
-// epuck_image_test.cpp).
-ProgramImage bootloader_image()
-{
-    ProgramImage image;
-    image.instructions[0x0] = 0x040000 | (bootloader_reset & 0xFFFF); // GOTO 0x016F40
-    image.instructions[0x2] = bootloader_reset >> 16;
-    for (uint32_t k = 0; k < 62; k++) {
-        image.instructions[0x04 + 2 * k] = 0x100 + 4 * (1 + k);
-        image.instructions[0x84 + 2 * k] = bootloader_base + 0x100;
-    }
-    for (uint32_t pc = bootloader_base; pc < bootloader_code_end; pc += 2)
-        image.instructions[pc] = pc; // its code
-    image.configuration[0xF80000] = 0xC706;
-    return image;
-}
-
 ProgramImage factory_image()
 {
-    std::ifstream file("tests/bootloader/hex/application.hex", std::ios::binary);
-    std::ostringstream text;
-    text << file.rdbuf();
-    ProgramImage application = aseba::flash::read_microchip_hex(text.str(), 0x16340);
-    aseba::flash::add_application_descriptor(application);
-    return aseba::flash::merge_images(bootloader_image(), application);
+    return aseba::flash::merge_images(bootloader_image(), bootloader_test::application_image());
 }
 
 // The factory image as a HEX file in a temporary folder, removed at the end.

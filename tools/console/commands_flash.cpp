@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <unistd.h>
@@ -30,17 +29,7 @@ constexpr Milliseconds NO_REBOOT_ENTER_TIMEOUT{ 10000 };
 // descriptor without which the bootloader would never start it.
 std::vector<client::FlashPage> read_image(const std::string &path)
 {
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-        throw std::runtime_error(path + ": cannot be read");
-    std::ostringstream text;
-    text << file.rdbuf();
-    flash::ProgramImage image;
-    try {
-        image = flash::read_microchip_hex(text.str(), BOOT_APPLICATION_END);
-    } catch (const flash::HexError &error) {
-        throw std::runtime_error(path + ": " + error.what());
-    }
+    flash::ProgramImage image = flash::read_microchip_hex_file(path, BOOT_APPLICATION_END);
     auto magic = image.instructions.find(BOOT_DESCRIPTOR_ADDRESS);
     if (magic == image.instructions.end() || magic->second != BOOT_DESCRIPTOR_MAGIC) {
         std::ostringstream message;

@@ -6,7 +6,6 @@
 
 #include <fstream>
 #include <iostream>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -41,16 +40,6 @@ Options:
   --help       show this text
 )";
 
-std::string read_file(const std::string &path)
-{
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-        throw std::runtime_error(path + ": cannot be read");
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
 void write_file(const std::string &path, const std::string &text)
 {
     std::ofstream file(path, std::ios::binary);
@@ -61,11 +50,7 @@ void write_file(const std::string &path, const std::string &text)
 
 aseba::flash::ProgramImage read_image(const std::string &path, uint32_t end)
 {
-    try {
-        return aseba::flash::read_microchip_hex(read_file(path), end);
-    } catch (const aseba::flash::HexError &error) {
-        throw std::runtime_error(path + ": " + error.what());
-    }
+    return aseba::flash::read_microchip_hex_file(path, end);
 }
 
 } // namespace

@@ -3,6 +3,7 @@
 #include "tools/flash/hex_image.hpp"
 
 #include <algorithm>
+#include <fstream>
 #include <iomanip>
 #include <iterator>
 #include <sstream>
@@ -172,6 +173,20 @@ ProgramImage read_microchip_hex(std::string_view text, uint32_t application_end)
     if (!ended)
         throw HexError("no end-of-file record: the file is truncated");
     return image;
+}
+
+ProgramImage read_microchip_hex_file(const std::string &path, uint32_t application_end)
+{
+    std::ifstream file(path, std::ios::binary);
+    if (!file)
+        throw HexError(path + ": cannot be read");
+    std::ostringstream text;
+    text << file.rdbuf();
+    try {
+        return read_microchip_hex(text.str(), application_end);
+    } catch (const HexError &error) {
+        throw HexError(path + ": " + error.what());
+    }
 }
 
 void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> entry)

@@ -41,6 +41,11 @@ struct ProgramImage {
 // [0, application_end) (PC addresses).
 ProgramImage read_microchip_hex(std::string_view text, uint32_t application_end);
 
+// Reads the HEX file at `path` as read_microchip_hex reads text; the what()
+// of the HexError it throws starts with the path (a file that cannot be
+// read, or the faulty line).
+ProgramImage read_microchip_hex_file(const std::string &path, uint32_t application_end);
+
 inline constexpr std::size_t page_bytes = 128; // one flash row
 inline constexpr uint32_t page_span = 0x40;    // PC units per page
 inline constexpr uint32_t erased_instruction = 0xFFFFFF;

@@ -6,8 +6,6 @@
 #include "tools/flash/install_command.hpp"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "tools/flash/tiny_serial_link.hpp"
 
@@ -136,16 +134,6 @@ InstallOptions parse_options(const std::vector<std::string> &arguments)
     return options;
 }
 
-std::string read_text(const std::string &path)
-{
-    std::ifstream file(path, std::ios::binary);
-    if (!file)
-        throw std::runtime_error(path + ": cannot be read");
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
-}
-
 // The target of the image's reset GOTO (PC 0 and 2).
 uint32_t reset_target(const ProgramImage &image)
 {
@@ -161,11 +149,13 @@ int install(const InstallOptions &options, std::ostream &out)
     ProgramImage image;
     std::vector<TinyPacket> packets;
     try {
-        image = read_microchip_hex(read_text(options.file), tiny_bootloader_base);
+        image = read_microchip_hex_file(options.file, tiny_bootloader_base);
         packets = tiny_bootloader_packets(image, options.robot_id);
     } catch (const HexError &error) {
-        throw std::runtime_error(options.file + ": " + error.what() +
-                                 " (the factory image is epuck-aseba-factory.hex)");
+        std::string where = error.what();
+        if (where.rfind(options.file, 0) != 0)
+            where = options.file + ": " + where;
+        throw std::runtime_error(where + " (the factory image is epuck-aseba-factory.hex)");
     }
     uint32_t target = reset_target(image);
     if (target >= tiny_bootloader_base)
