@@ -25,7 +25,7 @@ declare -A sources=(
             tests/node/node_harness.cpp tests/node/reference_decoder.cpp"
     [compiler]="$compiler_sources tests/fuzz/compiler_fuzzer.cpp"
     [client]="$client_sources tests/fuzz/client_fuzzer.cpp"
-    [files]="$vm_sources $(library aseba_node) $(library aseba_flash) hal/host/arena_file.cpp
+    [files]="$vm_sources $(library aseba_node) $(library aseba_flash) tools/emulator/arena_file.cpp
              tests/fuzz/files_fuzzer.cpp"
 )
 declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="" [files]="")

@@ -6,7 +6,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "hal/host/arena_simulation.hpp"
+#include "tools/emulator/arena_simulation.hpp"
 #include "tools/compiler/program_file.hpp"
 #include "tools/compiler/target_presets.hpp"
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "hal/host/arena_file.hpp"
+#include "tools/emulator/arena_file.hpp"
 
 namespace aseba::experiment
 {

@@ -8,7 +8,7 @@ aseba_dangerous_areas_SOURCES := experiments/dangerous-areas/experiment.cpp \
 
 PROGRAMS += dangerous-areas
 dangerous-areas_SOURCES := experiments/dangerous-areas/main.cpp
-# The arena's libraries are epuck-emu's (hal/host/module.mk, included later:
+# The arena's libraries are epuck-emu's (tools/emulator/module.mk, included later:
 # hence `=`).
 dangerous-areas_LIBS = aseba_dangerous_areas $(epuck-emu_LIBS)
 dangerous-areas_LDLIBS = $(epuck-emu_LDLIBS)

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "hal/host/arena_file.hpp"
+#include "tools/emulator/arena_file.hpp"
 
 using namespace aseba::arena;
 

@@ -9,7 +9,7 @@
 
 #include "experiments/dangerous-areas/experiment.hpp"
 #include "experiments/dangerous-areas/report.hpp"
-#include "hal/host/arena_simulation.hpp"
+#include "tools/emulator/arena_simulation.hpp"
 
 using namespace aseba::arena;
 using namespace aseba::experiment;

@@ -1,8 +1,8 @@
-# The simulated arena (hal/host: arena files, the Enki world, the lockstep
+# The simulated arena (tools/emulator: arena files, the Enki world, the lockstep
 # simulation) end to end through the real drivers and firmware.
 TESTS += arena_test
 arena_test_SOURCES := tests/arena/arena_file_test.cpp tests/arena/arena_sensing_test.cpp
-arena_test_LIBS := aseba_arena aseba_host_robot aseba_flash aseba_epuck_firmware aseba_bootloader aseba_epuck_drivers \
+arena_test_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_epuck_firmware aseba_bootloader aseba_epuck_drivers \
                    aseba_host_board aseba_compiler aseba_node aseba_vm aseba_natives
 arena_test_LDLIBS := -lenki -lgtest -lgtest_main -pthread
 
@@ -17,5 +17,5 @@ arena_experiment_test_LDLIBS = $(arena_test_LDLIBS)
 # The network's per-robot ports on bare host boards and loopback sockets.
 TESTS += network_robot_port_test
 network_robot_port_test_SOURCES := tests/arena/network_robot_port_test.cpp
-network_robot_port_test_LIBS := aseba_host_board
+network_robot_port_test_LIBS := aseba_emulator_network aseba_host_board
 network_robot_port_test_LDLIBS := -lgtest -lgtest_main -pthread

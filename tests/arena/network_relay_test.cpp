@@ -9,7 +9,7 @@
 #include <memory>
 #include <vector>
 
-#include "hal/host/network.hpp"
+#include "tools/emulator/network.hpp"
 
 namespace
 {

@@ -18,7 +18,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "hal/host/network.hpp"
+#include "tools/emulator/network.hpp"
 
 namespace
 {

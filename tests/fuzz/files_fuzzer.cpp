@@ -15,7 +15,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "hal/host/arena_file.hpp"
+#include "tools/emulator/arena_file.hpp"
 #include "tools/flash/hex_image.hpp"
 
 extern "C" {

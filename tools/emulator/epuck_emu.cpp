@@ -293,7 +293,7 @@ aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &b
 }
 
 // Arena mode: the robots in an Enki world, in simulated time (see
-// hal/host/arena_simulation.hpp); returns the exit status.
+// tools/emulator/arena_simulation.hpp); returns the exit status.
 int run_arena(const Options &options,
               const aseba::ProgramFile &program,
               const std::vector<uint16_t> &bytecode)

@@ -1,0 +1,21 @@
+# The emulator: simulated e-pucks (hal/host) joined in one TCP network, what
+# their memories hold before they start, and the arena.
+
+# The network that joins host boards and tools, as a Bluetooth switch would.
+LIBRARIES += aseba_emulator_network
+aseba_emulator_network_SOURCES := tools/emulator/network.cpp tools/emulator/network_status.cpp
+
+# The simulated arena: e-pucks in an Enki world (Debian libenki-dev, GPL-2+),
+# each on a host board with the real firmware, on one network; and the
+# robots' memories (flash images, stored programs) kept between runs.
+LIBRARIES += aseba_arena
+aseba_arena_SOURCES := tools/emulator/arena_file.cpp tools/emulator/enki_world.cpp \
+                       tools/emulator/arena_simulation.cpp tools/emulator/robot_memory.cpp
+
+# epuck-emu: the e-puck firmware image running on a PC.
+PROGRAMS += epuck-emu
+epuck-emu_SOURCES := tools/emulator/epuck_emu.cpp
+epuck-emu_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_epuck_firmware \
+                  aseba_bootloader aseba_epuck_drivers aseba_host_board aseba_compiler aseba_node \
+                  aseba_vm aseba_natives
+epuck-emu_LDLIBS := -lenki
