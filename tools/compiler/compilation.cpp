@@ -44,6 +44,7 @@ Compilation::Compilation(const TargetDescription &target_description,
         address += named.size;
     }
     named_variable_count = variables.size();
+    frames.push_back({ "the code before the first onevent", { 1, 1 }, 0, {}, 0, {} });
     next_free_address = address;
     if (address > target.variables_size)
         throw CompileFailure("Broken target description: not enough room for internal variables");
@@ -104,6 +105,7 @@ unsigned Compilation::allocate_temporary(unsigned size, SourcePosition where)
     if (next_free_address + temporaries_used + size > target.variables_size)
         fail(where, "Not enough free space to allocate this tempory variable");
     temporaries_used += size;
+    most_temporaries_used = std::max(most_temporaries_used, temporaries_used);
     return target.variables_size - temporaries_used;
 }
 
