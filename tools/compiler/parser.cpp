@@ -264,6 +264,11 @@ class Parser
             hint = " (constants are defined at the start of the program, before the variables)";
         else if (is(TokenType::VAR))
             hint = " (inside a block, declare variables with local)";
+        else if (is(TokenType::EQUAL) || is(TokenType::NOT_EQUAL) || is(TokenType::BIGGER) ||
+                 is(TokenType::BIGGER_EQUAL) || is(TokenType::SMALLER) ||
+                 is(TokenType::SMALLER_EQUAL))
+            hint = " (comparisons are only allowed in the conditions of if, elseif, when and "
+                   "while)";
         fail(position(),
              "Expecting a statement (an assignment, if, when, while, for, emit, call, a "
              "subroutine call, return or local), found " +
@@ -309,8 +314,8 @@ class Parser
     {
         if (!is(TokenType::IDENTIFIER))
             fail(position(),
-                 std::string("Expecting a variable name after ") + after + ", found " +
-                   token_type_name(token().type) + " instead");
+                 std::string("Expecting a variable name after ") + after + ", found " + found() +
+                   " instead");
         const Token &name = next();
         if (lookup_variable(name.text))
             fail(name.position, "Variable " + name.text + " is already defined");
@@ -658,7 +663,8 @@ class Parser
         size_t visible = visible_locals.size();
         unsigned offset = frame_offset;
         while (std::find(enders.begin(), enders.end(), token().type) == enders.end()) {
-            if (is(TokenType::END_OF_STREAM) || is(TokenType::ONEVENT) || is(TokenType::SUB))
+            if (is(TokenType::END_OF_STREAM) || is(TokenType::ONEVENT) || is(TokenType::SUB) ||
+                is(TokenType::END) || is(TokenType::ELSE) || is(TokenType::ELSEIF))
                 fail(position(),
                      std::string("Expecting ") + token_type_name(*enders.begin()) + " to close the " +
                        opener + " of line " + std::to_string(opened_at.line) + ", found " +
