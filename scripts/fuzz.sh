@@ -29,7 +29,7 @@ declare -A sources=(
              tests/fuzz/files_fuzzer.cpp"
 )
 declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="" [files]="")
-declare -A max_length=([vm]=1024 [node]=4096 [compiler]=4096 [client]=4096 [files]=8192)
+declare -A max_length=([vm]=1024 [node]=4096 [compiler]=1048576 [client]=4096 [files]=8192)
 # Folders of real inputs a target starts from, besides its own corpus.
 declare -A seeds=([compiler]="examples tests/compiler/programs"
                   [files]="tests/bootloader/hex tests/arena/data")

@@ -18,6 +18,7 @@
 
 #include "bytecode_listing.hpp"
 #include "corpus.hpp"
+#include "error_wording.hpp"
 #include "program_generator.hpp"
 #include "reference_oracle.hpp"
 #include "require_reference.hpp"
@@ -138,32 +139,6 @@ bool is_late_declaration(const reference::ReferenceError &error)
     return error.message ==
            "Variable definition is allowed only at the beginning of the program before any "
            "statement";
-}
-
-bool starts_with(const std::string &text, const std::string &prefix)
-{
-    return text.rfind(prefix, 0) == 0;
-}
-
-// The reference's positionless stack and size errors, which ours report at
-// the statement, call or handler concerned (docs/language.md, Errors).
-bool is_positioned_version(const std::string &reference, const std::string &ours)
-{
-    if (starts_with(reference, "Execution stack will overflow"))
-        return starts_with(ours, "Execution stack will overflow") ||
-               starts_with(ours, "Recursion is not allowed");
-    return starts_with(reference, "Script too big") && starts_with(ours, "Script too big");
-}
-
-// Our message for the reference's: the same, or one of the rewordings that
-// docs/language.md lists (what was expected, named; the literal as written).
-bool is_our_wording(const std::string &reference, const std::string &ours)
-{
-    if (starts_with(reference, "Expecting "))
-        return starts_with(ours, "Expecting ") && ours.find("Expecting string") == std::string::npos;
-    if (starts_with(reference, "Integer value "))
-        return starts_with(ours, "Integer value ") && ours.find("range") != std::string::npos;
-    return reference == ours;
 }
 
 std::string variable_problem(const aseba::CompileResult &ours,

@@ -6,6 +6,7 @@
 #include <sstream>
 
 extern "C" {
+#include "firmware/epuck_natives.h"
 #include "nat_standard.h"
 #include "vm.h"
 #include "vm_opcodes.h"
@@ -110,13 +111,15 @@ bool run_program(const CompileResult &compiled,
                  std::string &report,
                  std::string &error)
 {
-    // the target's natives, found by name among the host's implementations
+    // the target's natives, found by name among the host's implementations:
+    // the standard ones and the e-puck's (the firmware's own table)
     std::vector<const vm_native *> natives;
     for (const auto &function : target.native_functions) {
         const vm_native *found = nullptr;
-        for (uint16_t i = 0; i < nat_standard_table.count; ++i)
-            if (function.name == nat_standard_table.natives[i]->name)
-                found = nat_standard_table.natives[i];
+        for (const vm_native_table *table : { &nat_standard_table, &epuck_native_table })
+            for (uint16_t i = 0; i < table->count && found == nullptr; ++i)
+                if (function.name == table->natives[i]->name)
+                    found = table->natives[i];
         if (found == nullptr) {
             error = "native function " + function.name + " has no implementation on the host";
             return false;

@@ -23,11 +23,6 @@ constexpr int64_t INT16_MIN_VALUE = -32768;
 constexpr unsigned MAX_NESTING = 300;            // blocks, parentheses and unary operators
 constexpr unsigned MAX_EXPRESSION_HEIGHT = 1000; // keeps every later phase off deep recursion
 
-std::string range_message(int64_t value)
-{
-    return "Integer value " + std::to_string(value) + " out of [-32768;32767] range";
-}
-
 class Parser
 {
   public:
@@ -743,13 +738,13 @@ class Parser
             const Token &literal = expect(TokenType::INTEGER);
             int64_t value = -static_cast<int64_t>(literal.value);
             if (value < INT16_MIN_VALUE || value > INT16_MAX_VALUE)
-                fail(literal.position, range_message(std::abs(value))); // the literal as written
+                fail(literal.position, literal_range_message(literal, true));
             return { value, literal.position };
         }
         if (is(TokenType::INTEGER)) {
             const Token &literal = next();
             if (literal.value > INT16_MAX_VALUE)
-                fail(literal.position, range_message(literal.value));
+                fail(literal.position, literal_range_message(literal, false));
             return { literal.value, where };
         }
         if (!is(TokenType::IDENTIFIER))
@@ -1245,8 +1240,7 @@ class Parser
                 const Token &literal = next();
                 int64_t value = -static_cast<int64_t>(literal.value);
                 if (value < INT16_MIN_VALUE || value > INT16_MAX_VALUE)
-                    fail(literal.position,
-                         range_message(std::abs(value))); // the literal as written
+                    fail(literal.position, literal_range_message(literal, true));
                 return immediate(value, literal.position);
             }
             return unary(VM_UNARY_SUB, where, unary_expression());
@@ -1255,7 +1249,7 @@ class Parser
         case TokenType::INTEGER: {
             const Token &literal = next();
             if (literal.value > INT16_MAX_VALUE)
-                fail(literal.position, range_message(literal.value));
+                fail(literal.position, literal_range_message(literal, false));
             return immediate(literal.value, literal.position);
         }
         case TokenType::IDENTIFIER: {

@@ -21,10 +21,15 @@ struct ProgramFile {
     unsigned column_offset = 0;
 };
 
+// The largest program file read: an .aesl project of several nodes may be
+// larger than one program (compiler.hpp, MAX_SOURCE_BYTES), not much more.
+inline constexpr size_t MAX_PROGRAM_FILE_BYTES = 4 * 1024 * 1024;
+
 // Reads `path` ("-" for standard input). An .aesl file gives the program of
 // the node named `node`, or of its first node when `node` is empty. Throws
 // std::runtime_error with a message "FILE[:LINE]: error: ..." when the file
-// cannot be read or is not a valid project.
+// cannot be read (a folder, larger than MAX_PROGRAM_FILE_BYTES) or is not a
+// valid project.
 ProgramFile read_program_file(const std::string &path, const std::string &node = "");
 
 // Compiles the program for `target`. On failure, `error_text` holds the error
