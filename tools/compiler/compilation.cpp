@@ -94,10 +94,10 @@ std::optional<unsigned> Compilation::find_native(const std::string &name) const
 
 std::optional<unsigned> Compilation::find_subroutine(const std::string &name) const
 {
-    for (size_t i = 0; i < subroutines.size(); ++i)
-        if (subroutines[i] == name)
-            return static_cast<unsigned>(i);
-    return std::nullopt;
+    auto found = subroutine_index.find(name);
+    if (found == subroutine_index.end())
+        return std::nullopt;
+    return found->second;
 }
 
 unsigned Compilation::allocate_temporary(unsigned size, SourcePosition where)

@@ -73,6 +73,7 @@ struct Compilation {
     unsigned most_temporaries_used = 0;       // the most at once, for the final memory check
 
     std::vector<std::string> subroutines; // in definition order
+    std::map<std::string, unsigned> subroutine_index;
     std::vector<Subroutine> signatures;   // the same subroutines, with their parameters
     std::vector<unsigned> implemented_events;
 

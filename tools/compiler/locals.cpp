@@ -107,28 +107,36 @@ void check_returns(const Node &program, const Compilation &compilation)
 }
 
 // Every frame's place in the locals area: a subroutine's frame starts after
-// the words its callers use at the calls. Recursion has no fixed point: the
-// passes stop and the stack check reports the cycle.
+// the words its callers use at the calls. Frames are placed callers first
+// (Kahn's order on the calls); frames in a cycle of calls keep base 0, as
+// the stack check refuses the recursion anyway.
 void lay_out_frames(Compilation &compilation)
 {
     std::vector<Frame> &frames = compilation.frames;
-    for (size_t pass = 0; pass <= frames.size(); ++pass) {
-        bool changed = false;
-        for (const Frame &frame : frames) {
-            for (const Frame::CallSite &call : frame.calls) {
-                std::optional<unsigned> index = compilation.find_subroutine(call.callee);
-                if (!index)
-                    continue; // reported by the type check
-                Frame &called = frames[compilation.signatures[*index].frame];
-                unsigned start = frame.base + call.words_in_use;
-                if (called.base < start) {
-                    called.base = start;
-                    changed = true;
-                }
-            }
+    std::vector<std::vector<std::pair<size_t, unsigned>>> callees(frames.size()); // frame, words
+    std::vector<unsigned> callers(frames.size(), 0);
+    for (size_t f = 0; f < frames.size(); ++f) {
+        for (const Frame::CallSite &call : frames[f].calls) {
+            std::optional<unsigned> index = compilation.find_subroutine(call.callee);
+            if (!index)
+                continue; // reported by the type check
+            size_t called = compilation.signatures[*index].frame;
+            callees[f].push_back({ called, call.words_in_use });
+            ++callers[called];
         }
-        if (!changed)
-            break;
+    }
+    std::vector<size_t> ready;
+    for (size_t f = 0; f < frames.size(); ++f)
+        if (callers[f] == 0)
+            ready.push_back(f);
+    while (!ready.empty()) {
+        size_t f = ready.back();
+        ready.pop_back();
+        for (const auto &[called, words_in_use] : callees[f]) {
+            frames[called].base = std::max(frames[called].base, frames[f].base + words_in_use);
+            if (--callers[called] == 0)
+                ready.push_back(called);
+        }
     }
     compilation.locals_start = compilation.next_free_address;
     compilation.locals_size = 0;

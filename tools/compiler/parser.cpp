@@ -177,6 +177,16 @@ class Parser
     // words in use, reached at `where`.
     void note_frame_use(SourcePosition where)
     {
+        // one frame alone beyond the memory: no need to read further
+        if (compilation.next_free_address + frame_offset + statement_scratch >
+            compilation.target.variables_size)
+            fail(where,
+                 "Not enough variable memory for the locals: " +
+                   std::to_string(compilation.next_free_address) + " words of globals and " +
+                   std::to_string(frame_offset + statement_scratch) + " of locals in " +
+                   compilation.frames.back().title + ", the target has " +
+                   std::to_string(compilation.target.variables_size) +
+                   " (use fewer or smaller locals)");
         Frame &frame = compilation.frames.back();
         if (frame_offset + statement_scratch > frame.size) {
             frame.size = frame_offset + statement_scratch;
@@ -481,6 +491,8 @@ class Parser
         if (compilation.find_subroutine(name.text))
             fail(name.position, "Subroutine " + name.text + " is already defined");
         start_frame("sub " + name.text, name.position);
+        compilation.subroutine_index[name.text] =
+          static_cast<unsigned>(compilation.subroutines.size());
         compilation.subroutines.push_back(name.text);
         Subroutine subroutine;
         subroutine.name = name.text;
@@ -491,9 +503,6 @@ class Parser
             subroutine.has_parameter_list = true;
             while (!is(TokenType::PAREN_CLOSE)) {
                 const Token &parameter = new_variable_name("( or , in a parameter list");
-                for (const auto &known : subroutine.parameters)
-                    if (known.name == parameter.text)
-                        fail(parameter.position, "Parameter " + parameter.text + " is given twice");
                 unsigned size = 1;
                 if (is(TokenType::BRACKET_OPEN)) {
                     SourcePosition bracket = position();
@@ -598,8 +607,16 @@ class Parser
     NodePointer return_statement()
     {
         auto node = make_node(NodeKind::Return, next().position);
-        if (!in_subroutine_with_parameter_list())
-            return node; // Aseba 1.6: a `return` alone, whatever follows
+        if (!in_subroutine_with_parameter_list()) {
+            // Aseba 1.6: a `return` alone; a name after it starts the next
+            // statement, anything else that could be a value cannot
+            if (can_start_expression(token().type) && !is(TokenType::IDENTIFIER))
+                fail(position(),
+                     "Expecting a statement after return, found " + found() +
+                       " instead: only a subroutine written with parentheses, sub NAME(...), "
+                       "returns a value");
+            return node;
+        }
         Subroutine &subroutine = compilation.signatures[static_cast<size_t>(current_subroutine)];
         if (can_start_expression(token().type)) {
             node->children.push_back(binary_or());
