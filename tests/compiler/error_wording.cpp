@@ -31,4 +31,15 @@ bool is_our_wording(const std::string &reference, const std::string &ours)
     return reference == ours;
 }
 
+bool reference_stopped_at_a_call(const std::string &reference)
+{
+    return reference.find("( (open parenthesis) instead") != std::string::npos;
+}
+
+bool is_whole_program_error(const std::string &ours)
+{
+    return starts_with(ours, "Execution stack will overflow") ||
+           starts_with(ours, "Recursion is not allowed") || starts_with(ours, "Script too big");
+}
+
 } // namespace compiler_tests

@@ -17,4 +17,13 @@ bool is_positioned_version(const std::string &reference, const std::string &ours
 // (what was expected, named; a literal as written).
 bool is_our_wording(const std::string &reference, const std::string &ours);
 
+// Whether the reference stopped at an opening parenthesis after a name, where
+// ours reads a call (docs/language.md): the two may then stop at different
+// columns of the line, each with its own message.
+bool reference_stopped_at_a_call(const std::string &reference);
+
+// Whether `ours` is one of the errors found only once the whole program is
+// read (stack, recursion, script size), which the reference reports last.
+bool is_whole_program_error(const std::string &ours);
+
 } // namespace compiler_tests
