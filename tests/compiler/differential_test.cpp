@@ -258,8 +258,8 @@ void expect_agreement(const std::vector<Comparison> &comparisons)
                             << " programs compile differently:\n"
                             << summary.str() << "the first ones:\n"
                             << details.str();
-    auto dialect = std::count_if(comparisons.begin(), comparisons.end(),
-                                 [](const Comparison &c) { return c.paper_dialect; });
+    auto dialect = std::count_if(
+      comparisons.begin(), comparisons.end(), [](const Comparison &c) { return c.paper_dialect; });
     if (dialect > 0)
         std::cout << dialect << " of " << comparisons.size()
                   << " programs declare a variable after code: accepted there by ours only\n";

@@ -25,7 +25,8 @@ bool is_positioned_version(const std::string &reference, const std::string &ours
 bool is_our_wording(const std::string &reference, const std::string &ours)
 {
     if (starts_with(reference, "Expecting "))
-        return starts_with(ours, "Expecting ") && ours.find("Expecting string") == std::string::npos;
+        return starts_with(ours, "Expecting ") &&
+               ours.find("Expecting string") == std::string::npos;
     if (starts_with(reference, "Integer value "))
         return starts_with(ours, "Integer value ") && ours.find(" range") != std::string::npos;
     return reference == ours;

@@ -23,8 +23,8 @@ struct LanguageCase {
     std::string source;
     std::vector<EventToSend> events;
     std::vector<std::pair<std::string, std::vector<int16_t>>> expected; // global -> words
-    std::vector<std::string> emitted; // as the run reports them
-    int locals_words = -1;            // -1: not checked
+    std::vector<std::string> emitted;                                   // as the run reports them
+    int locals_words = -1;                                              // -1: not checked
 };
 
 std::vector<int16_t> numbers(std::istream &words)

@@ -106,11 +106,13 @@ TEST(Lexer, OutOfRangeLiteralsAreNamedAsWritten)
 TEST(Lexer, InvalidUtf8IsRefusedWithItsPosition)
 {
     for (const char *bad : { "\xff", "\xc3", "\xc0\x80", "\xed\xa0\x80", "\xf4\x90\x80\x80" }) {
-        CompileResult result = unit::compile_for_dummy(std::string("var x\nx = 1 # \xc3\xa9 ") + bad + "\n");
+        CompileResult result =
+          unit::compile_for_dummy(std::string("var x\nx = 1 # \xc3\xa9 ") + bad + "\n");
         ASSERT_FALSE(result.ok);
         EXPECT_EQ(result.error.position.line, 2u);
         EXPECT_EQ(result.error.position.column, 11u) << "after the 10 characters before it";
-        EXPECT_EQ(result.error.message.rfind("Invalid UTF-8 byte 0x", 0), 0u) << result.error.message;
+        EXPECT_EQ(result.error.message.rfind("Invalid UTF-8 byte 0x", 0), 0u)
+          << result.error.message;
     }
     EXPECT_TRUE(unit::compile_for_dummy("var \xc3\xa9t\xc3\xa9 = 1\n").ok) << "valid UTF-8 letters";
 }

@@ -37,32 +37,41 @@ std::vector<DeepInput> deep_inputs()
         { "elseif_chain",
           "var x\nif x == 0 then\n" + repeat("elseif x == 1 then\n", DEEP) + "end\n",
           "This program nests too deeply" },
-        { "nested_if", "var x\n" + repeat("if x == 0 then\n", DEEP) + repeat("end\n", DEEP),
+        { "nested_if",
+          "var x\n" + repeat("if x == 0 then\n", DEEP) + repeat("end\n", DEEP),
           "This program nests too deeply" },
-        { "nested_while", "var x\n" + repeat("while x == 0 do\n", DEEP) + repeat("end\n", DEEP),
+        { "nested_while",
+          "var x\n" + repeat("while x == 0 do\n", DEEP) + repeat("end\n", DEEP),
           "This program nests too deeply" },
-        { "parentheses", "var x\nx = " + repeat("(", LONG) + "1" + repeat(")", LONG) + "\n",
+        { "parentheses",
+          "var x\nx = " + repeat("(", LONG) + "1" + repeat(")", LONG) + "\n",
           "This program nests too deeply" },
-        { "unary_minus", "var x\nx = " + repeat("- ", LONG) + "x\n",
+        { "unary_minus",
+          "var x\nx = " + repeat("- ", LONG) + "x\n",
           "This program nests too deeply" },
-        { "not", "var x\nif " + repeat("not ", LONG) + "x == 1 then\nend\n",
+        { "not",
+          "var x\nif " + repeat("not ", LONG) + "x == 1 then\nend\n",
           "This program nests too deeply" },
-        { "tuples", "var x[1]\nx = " + repeat("[", LONG) + "1" + repeat("]", LONG) + "\n",
+        { "tuples",
+          "var x[1]\nx = " + repeat("[", LONG) + "1" + repeat("]", LONG) + "\n",
           "This program nests too deeply" },
-        { "indexes", "var a[2]\na[0] = " + repeat("a[", DEEP) + "0" + repeat("]", DEEP) + "\n",
+        { "indexes",
+          "var a[2]\na[0] = " + repeat("a[", DEEP) + "0" + repeat("]", DEEP) + "\n",
           "This program nests too deeply" },
-        { "calls", "var x\nx = " + repeat("f(", DEEP) + "1" + repeat(")", DEEP) +
-                     "\nsub f(v)\n    return v\n",
+        { "calls",
+          "var x\nx = " + repeat("f(", DEEP) + "1" + repeat(")", DEEP) +
+            "\nsub f(v)\n    return v\n",
           "This program nests too deeply" },
         { "sum", "var x\nx = x" + repeat(" + x", LONG) + "\n", "This expression is too long" },
-        { "conjunction", "var x\nif x == 1" + repeat(" and x == 1", DEEP) + " then\nend\n",
+        { "conjunction",
+          "var x\nif x == 1" + repeat(" and x == 1", DEEP) + " then\nend\n",
           "This expression is too long" },
         { "callsub_chain",
           [] {
               std::string text = "callsub s0\n";
               for (int i = 0; i < DEEP; ++i)
-                  text += "sub s" + std::to_string(i) + "\n    callsub s" + std::to_string(i + 1) +
-                          "\n";
+                  text +=
+                    "sub s" + std::to_string(i) + "\n    callsub s" + std::to_string(i + 1) + "\n";
               return text + "sub s" + std::to_string(DEEP) + "\n";
           }(),
           "Execution stack will overflow" },
@@ -92,9 +101,11 @@ std::vector<DeepInput> deep_inputs()
               return text;
           }(),
           "Not enough variable memory for the locals" },
-        { "long_tuple", "var x[] = [" + repeat("1, ", LONG) + "1]\n",
+        { "long_tuple",
+          "var x[] = [" + repeat("1, ", LONG) + "1]\n",
           "No more free variable space" },
-        { "too_long", "var x\n" + repeat("x = 1 # padding to make the text long\n", 40000),
+        { "too_long",
+          "var x\n" + repeat("x = 1 # padding to make the text long\n", 40000),
           "This program is " },
     };
 }
@@ -112,13 +123,13 @@ TEST(CompilerLimits, DeepInputsEndInAClearError)
 // Just inside the limits, the same constructs compile.
 TEST(CompilerLimits, InsideTheLimitsTheyCompile)
 {
-    std::string elseifs = "var x\nif x == 0 then\n" + repeat("elseif x == 1 then\n x = 1\n", 60) +
-                          "end\n";
+    std::string elseifs =
+      "var x\nif x == 0 then\n" + repeat("elseif x == 1 then\n x = 1\n", 60) + "end\n";
     EXPECT_TRUE(compile_for_dummy(elseifs).ok) << compile_for_dummy(elseifs).error.message;
     std::string parentheses = "var x\nx = " + repeat("(", 250) + "1" + repeat(")", 250) + "\n";
     EXPECT_TRUE(compile_for_dummy(parentheses).ok);
-    std::string calls = "var x\nx = " + repeat("f(", 30) + "1" + repeat(")", 30) +
-                        "\nsub f(v)\n    return v\n";
+    std::string calls =
+      "var x\nx = " + repeat("f(", 30) + "1" + repeat(")", 30) + "\nsub f(v)\n    return v\n";
     EXPECT_TRUE(compile_for_dummy(calls).ok) << compile_for_dummy(calls).error.message;
 }
 

@@ -53,8 +53,7 @@ TEST(ProgramFile, FolderIsAnError)
         read_program_file(std::filesystem::temp_directory_path().string());
         FAIL() << "a folder was read as a program";
     } catch (const std::runtime_error &error) {
-        EXPECT_NE(std::string(error.what()).find("is a folder"), std::string::npos)
-          << error.what();
+        EXPECT_NE(std::string(error.what()).find("is a folder"), std::string::npos) << error.what();
     }
 }
 

@@ -257,9 +257,8 @@ class Expander
         switch (statement->kind) {
         case NodeKind::Block: expand_block(*statement); return statement;
         case NodeKind::Assignment:
-            return expand_assignment(std::move(statement->children[0]),
-                                     std::move(statement->children[1]),
-                                     *statement);
+            return expand_assignment(
+              std::move(statement->children[0]), std::move(statement->children[1]), *statement);
         case NodeKind::CompoundAssignment: {
             auto sum = make_node(NodeKind::Binary, statement->position);
             sum->operation = statement->operation;
@@ -558,13 +557,10 @@ void check_statement_types(const Node &statement, const Compilation &compilation
                    " parameters: call it with its arguments, " + statement.name + "(...)");
         break;
     }
-    case NodeKind::FunctionCall:
-        expression_type(statement);
-        break;
+    case NodeKind::FunctionCall: expression_type(statement); break;
     case NodeKind::Return:
         if (!statement.children.empty())
-            expect_type(
-              Type::Integer, expression_type(*statement.children[0]), statement.position);
+            expect_type(Type::Integer, expression_type(*statement.children[0]), statement.position);
         break;
     case NodeKind::Block:
     case NodeKind::Emit:

@@ -127,7 +127,8 @@ class Generator
             break;
         case NodeKind::FunctionCall: {
             const Subroutine &called = call_code(node, code);
-            add(code, line, { opcode_word(VM_OP_LOAD, compilation.local_address(called.frame, 0)) });
+            add(
+              code, line, { opcode_word(VM_OP_LOAD, compilation.local_address(called.frame, 0)) });
             break;
         }
         default:
@@ -343,9 +344,8 @@ class Generator
         unsigned depth = 0;
         for (size_t k = 0; k < call.children.size(); ++k) {
             auto waiting_words = static_cast<unsigned>(waiting ? k : 0);
-            depth = std::max(depth,
-                             waiting_words +
-                               expression_depth(*call.children[k], below + waiting_words));
+            depth = std::max(
+              depth, waiting_words + expression_depth(*call.children[k], below + waiting_words));
         }
         record_call(call.name, below, call.position);
         return depth;

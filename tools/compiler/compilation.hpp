@@ -74,7 +74,7 @@ struct Compilation {
 
     std::vector<std::string> subroutines; // in definition order
     std::map<std::string, unsigned> subroutine_index;
-    std::vector<Subroutine> signatures;   // the same subroutines, with their parameters
+    std::vector<Subroutine> signatures; // the same subroutines, with their parameters
     std::vector<unsigned> implemented_events;
 
     std::vector<Frame> frames; // in source order: the init code, then each onevent and sub

@@ -102,7 +102,10 @@ size_t first_invalid_utf8(std::string_view text)
             ++i;
             continue;
         }
-        unsigned length = (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : (byte >> 3) == 0x1E ? 4 : 0;
+        unsigned length = (byte >> 5) == 0x6    ? 2
+                          : (byte >> 4) == 0xE  ? 3
+                          : (byte >> 3) == 0x1E ? 4
+                                                : 0;
         if (length == 0 || i + length > text.size())
             return i;
         char32_t code = byte & (0x7F >> length);
@@ -130,12 +133,12 @@ void check_utf8(std::string_view text)
     line_start = line_start == std::string_view::npos || bad == 0 ? 0 : line_start + 1;
     SourcePosition where;
     where.line = 1 + static_cast<unsigned>(std::count(text.begin(), text.begin() + bad, '\n'));
-    where.column = 1 + static_cast<unsigned>(decode_utf8(text.substr(line_start, bad - line_start)).size());
+    where.column =
+      1 + static_cast<unsigned>(decode_utf8(text.substr(line_start, bad - line_start)).size());
     char hex[8];
     snprintf(hex, sizeof hex, "%02x", static_cast<unsigned char>(text[bad]));
     fail(where,
-         std::string("Invalid UTF-8 byte 0x") + hex +
-           ": the program must be saved as UTF-8 text");
+         std::string("Invalid UTF-8 byte 0x") + hex + ": the program must be saved as UTF-8 text");
 }
 
 // A literal out of range, named as it is written (with its minus sign), and

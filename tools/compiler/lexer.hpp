@@ -37,7 +37,7 @@ namespace aseba
     X(ONEVENT, "onevent keyword")                                                                  \
     X(ABS, "abs keyword")                                                                          \
     X(RETURN, "return keyword")                                                                    \
-    X(IDENTIFIER, "identifier")                                                                        \
+    X(IDENTIFIER, "identifier")                                                                    \
     X(INTEGER, "integer")                                                                          \
     X(PAREN_OPEN, "( (open parenthesis)")                                                          \
     X(PAREN_CLOSE, ") (close parenthesis)")                                                        \

@@ -87,8 +87,9 @@ class StackCheck
                 if (section.stack_depth > stack_size)
                     fail(section.deepest_at,
                          "Execution stack will overflow: this statement needs " +
-                           std::to_string(section.stack_depth) + " words of stack, the target has " +
-                           std::to_string(stack_size) + ": cut long mathematical expressions");
+                           std::to_string(section.stack_depth) +
+                           " words of stack, the target has " + std::to_string(stack_size) +
+                           ": cut long mathematical expressions");
                 need[top.section] = top.deepest;
                 progress[top.section] = Progress::Done;
                 path.pop_back();

@@ -25,8 +25,8 @@ bool always_returns(const Node &statement)
                 return true;
         return false;
     case NodeKind::If:
-        return !statement.is_when && statement.has_else &&
-               always_returns(*statement.children[1]) && always_returns(*statement.children[2]);
+        return !statement.is_when && statement.has_else && always_returns(*statement.children[1]) &&
+               always_returns(*statement.children[2]);
     default: return false;
     }
 }
@@ -176,9 +176,8 @@ void check_memory(const Compilation &compilation)
         if (frame.base + frame.size > largest->base + largest->size)
             largest = &frame;
     fail(largest->largest_at,
-         "Not enough variable memory for the locals: " +
-           std::to_string(compilation.locals_start) + " words of globals, " +
-           std::to_string(compilation.locals_size) + " of locals and " +
+         "Not enough variable memory for the locals: " + std::to_string(compilation.locals_start) +
+           " words of globals, " + std::to_string(compilation.locals_size) + " of locals and " +
            std::to_string(compilation.most_temporaries_used) + " of scratch, the target has " +
            std::to_string(size) + " (use fewer or smaller locals)");
 }

@@ -1,11 +1,12 @@
-// The recursive-descent parser of language.md §3-§4. Besides building the
-// tree it does what the reference does while parsing: declares constants and
-// variables, resolves names, events and natives, and allocates the
-// temporaries of `emit` and native-call arguments (§7).
+// The recursive-descent parser of language.md §3-§4 and of the additions of
+// docs/language.md. Besides building the tree it does what the reference does
+// while parsing: declares constants and variables, resolves names, events and
+// natives, and allocates the temporaries of `emit` and native-call arguments
+// (§7). It also gives locals and parameters their offsets in the frame of
+// their handler or subroutine, block by block, and records each call with
+// the frame words in use around it (locals.cpp lays the frames out).
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 
 #include "compilation.hpp"
 #include "diagnostics.hpp"
@@ -254,11 +255,11 @@ class Parser
         return text;
     }
 
-    [[noreturn]] void fail_expecting_assignment(const char *after) const
+    [[noreturn]] void fail_expecting_assignment() const
     {
         fail(position(),
-             std::string("Expecting an assignment (=, +=, -=, ..., ++ or --) after ") + after +
-               ", found " + found() + " instead");
+             "Expecting an assignment (=, +=, -=, ..., ++ or --) after the variable, found " +
+               found() + " instead");
     }
 
     // A statement cannot start with the current token.
@@ -285,8 +286,7 @@ class Parser
     {
         if (!is(TokenType::IDENTIFIER))
             fail(position(),
-                 std::string("Expecting a constant name after const, found ") +
-                   token_type_name(token().type) + " instead");
+                 "Expecting a constant name after const, found " + found() + " instead");
         return next();
     }
 
@@ -377,8 +377,7 @@ class Parser
         }
         if (!size_known) {
             if (!result.initializer)
-                fail(result.name->position,
-                     "Array " + result.name->text + " has undefined size");
+                fail(result.name->position, "Array " + result.name->text + " has undefined size");
             declared_size = vector_size(*result.initializer);
         }
         if (declared_size > compilation.target.variables_size)
@@ -411,9 +410,8 @@ class Parser
         if (compilation.next_free_address + declared.size > compilation.target.variables_size)
             fail(name.position, "No more free variable space");
         Variable global{ name.text, compilation.next_free_address, declared.size, -1 };
-        compilation.variables.push_back({ name.text,
-                                          static_cast<uint16_t>(global.address),
-                                          static_cast<uint16_t>(global.size) });
+        compilation.variables.push_back(
+          { name.text, static_cast<uint16_t>(global.address), static_cast<uint16_t>(global.size) });
         compilation.next_free_address += declared.size;
         return initial_assignment(declared, global);
     }
@@ -668,7 +666,8 @@ class Parser
 
     // Statements until one of the `enders` (not consumed); the block's locals
     // end with it.
-    NodePointer block(std::initializer_list<TokenType> enders, const char *opener,
+    NodePointer block(std::initializer_list<TokenType> enders,
+                      const char *opener,
                       SourcePosition opened_at)
     {
         auto result = make_node(NodeKind::Block, position());
@@ -678,9 +677,9 @@ class Parser
             if (is(TokenType::END_OF_STREAM) || is(TokenType::ONEVENT) || is(TokenType::SUB) ||
                 is(TokenType::END) || is(TokenType::ELSE) || is(TokenType::ELSEIF))
                 fail(position(),
-                     std::string("Expecting ") + token_type_name(*enders.begin()) + " to close the " +
-                       opener + " of line " + std::to_string(opened_at.line) + ", found " +
-                       found() + " instead");
+                     std::string("Expecting ") + token_type_name(*enders.begin()) +
+                       " to close the " + opener + " of line " + std::to_string(opened_at.line) +
+                       ", found " + found() + " instead");
             add(*result, statement());
         }
         visible_locals.resize(visible);
@@ -690,9 +689,12 @@ class Parser
 
     NodePointer if_statement()
     {
-        // an `elseif` nests one more `if`: it counts against the nesting limit
-        NestingGuard guard(nesting, position());
+        // an `elseif` nests one more `if` without passing through statement():
+        // it counts against the nesting limit here
         bool is_elseif = is(TokenType::ELSEIF);
+        std::optional<NestingGuard> guard;
+        if (is_elseif)
+            guard.emplace(nesting, position());
         auto node = make_node(NodeKind::If, next().position);
         node->children.push_back(or_expression());
         flush_calls();
@@ -1053,7 +1055,7 @@ class Parser
         case TokenType::BIT_OR_EQUAL: operation = VM_BINARY_BIT_OR; break;
         case TokenType::BIT_XOR_EQUAL: operation = VM_BINARY_BIT_XOR; break;
         case TokenType::BIT_AND_EQUAL: operation = VM_BINARY_BIT_AND; break;
-        default: fail_expecting_assignment("the variable");
+        default: fail_expecting_assignment();
         }
         next();
         auto node = make_node(kind, where); // a target that is no variable fails when expanded
@@ -1076,8 +1078,8 @@ class Parser
         if (target.kind != NodeKind::Memory)
             return;
         unsigned size = vector_size(target);
-        bool reads_itself = assignment.kind != NodeKind::Assignment ||
-                            mentions(*assignment.children[1], target.name);
+        bool reads_itself =
+          assignment.kind != NodeKind::Assignment || mentions(*assignment.children[1], target.name);
         if (size > 1 && reads_itself) {
             assignment.address = scratch(size, assignment.position, true, assignment.frame);
             assignment.has_reserved_temporary = true;

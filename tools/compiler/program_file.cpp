@@ -77,18 +77,22 @@ ProgramFile read_program_file(const std::string &path, const std::string &node)
             return program;
         }
     }
-    throw std::runtime_error(program.file_name + ": error: " +
-                             (node.empty() ? "the project has no node"
-                                           : "the project has no node named " + node));
+    throw std::runtime_error(
+      program.file_name + ": error: " +
+      (node.empty() ? "the project has no node" : "the project has no node named " + node));
 }
 
-CompileResult compile_program_file(const ProgramFile &program, const TargetDescription &target,
+CompileResult compile_program_file(const ProgramFile &program,
+                                   const TargetDescription &target,
                                    std::string &error_text)
 {
     CompileResult result = compile(program.source, target, program.definitions);
     if (!result.ok)
-        error_text = format_error(program.file_name, program.source, result.error,
-                                  program.line_offset, program.column_offset);
+        error_text = format_error(program.file_name,
+                                  program.source,
+                                  result.error,
+                                  program.line_offset,
+                                  program.column_offset);
     return result;
 }
 

@@ -13,11 +13,11 @@ namespace aseba
 {
 
 struct ProgramFile {
-    std::string file_name;          // as given, for messages
-    std::string source;             // the program text
-    CommonDefinitions definitions;  // the project's (empty for a script)
-    std::string node_name;          // the project node the program is for
-    unsigned line_offset = 0;       // where the program starts in the file
+    std::string file_name;         // as given, for messages
+    std::string source;            // the program text
+    CommonDefinitions definitions; // the project's (empty for a script)
+    std::string node_name;         // the project node the program is for
+    unsigned line_offset = 0;      // where the program starts in the file
     unsigned column_offset = 0;
 };
 
@@ -34,7 +34,8 @@ ProgramFile read_program_file(const std::string &path, const std::string &node =
 
 // Compiles the program for `target`. On failure, `error_text` holds the error
 // as people read it: file:line:column, the source line and a caret.
-CompileResult compile_program_file(const ProgramFile &program, const TargetDescription &target,
+CompileResult compile_program_file(const ProgramFile &program,
+                                   const TargetDescription &target,
                                    std::string &error_text);
 
 } // namespace aseba

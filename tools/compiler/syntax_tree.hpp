@@ -29,8 +29,8 @@ enum class NodeKind {
     FunctionCall, // name; children: arguments (scalar words after expansion); a statement
                   // or an expression (the subroutine's value)
     Return,       // children: the value, if any; address: where the value goes
-    EventStart, // event_id: the following statements handle this event
-    SubStart,   // name: the following statements form this subroutine
+    EventStart,   // event_id: the following statements handle this event
+    SubStart,     // name: the following statements form this subroutine
     // expressions
     Binary,    // operation; children: left, right
     Unary,     // operation; children: operand
@@ -94,7 +94,7 @@ struct Node {
                     // subroutine), made absolute once the locals area is laid out
     bool has_reserved_temporary = false; // Assignment: its vector temporary is at `address`
     bool is_statement = false;           // FunctionCall: a statement (any value dropped)
-    unsigned height = 1;   // expressions: levels below and including this one
+    unsigned height = 1;                 // expressions: levels below and including this one
     unsigned end_line = 0; // If: line of its `end` (the reference's line after the if)
 
     Node(NodeKind node_kind, SourcePosition where)
