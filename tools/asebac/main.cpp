@@ -50,7 +50,8 @@ Outputs (compile):
                            hex (one 0xXXXX word per line, the default) or c
                            (a C array)
   --listing                print the disassembly with source lines
-  --variables              print the variable map: name, address, size
+  --variables              print the variable map: name, address, size (locals
+                           too, with their handler or subroutine)
   With no output option, asebac only checks the program and says how big it is.
 
 Running (run):
