@@ -543,13 +543,8 @@ void check_statement_types(const Node &statement, const Compilation &compilation
 {
     switch (statement.kind) {
     case NodeKind::CallSub: {
-        std::optional<unsigned> called = compilation.find_subroutine(statement.name);
-        if (!called)
-            fail(statement.position,
-                 with_suggestion("Subroutine " + statement.name + " does not exists",
-                                 statement.name,
-                                 compilation.subroutines));
-        const Subroutine &subroutine = compilation.signatures[*called];
+        const Subroutine &subroutine = compilation.called_subroutine(
+          statement.name, statement.position, "Subroutine " + statement.name + " does not exists");
         if (!subroutine.parameters.empty())
             fail(statement.position,
                  "Subroutine " + statement.name + " takes " +

@@ -100,6 +100,16 @@ std::optional<unsigned> Compilation::find_subroutine(const std::string &name) co
     return found->second;
 }
 
+const Subroutine &Compilation::called_subroutine(const std::string &name,
+                                                 SourcePosition where,
+                                                 const std::string &unknown) const
+{
+    std::optional<unsigned> index = find_subroutine(name);
+    if (!index)
+        fail(where, with_suggestion(unknown, name, subroutines));
+    return signatures[*index];
+}
+
 unsigned Compilation::allocate_temporary(unsigned size, SourcePosition where)
 {
     if (next_free_address + temporaries_used + size > target.variables_size)

@@ -97,6 +97,10 @@ struct Compilation {
     std::optional<unsigned> find_local_event(const std::string &name) const;
     std::optional<unsigned> find_native(const std::string &name) const;
     std::optional<unsigned> find_subroutine(const std::string &name) const;
+    // The subroutine `name`; else throws `unknown` at `where`, with a suggestion.
+    const Subroutine &called_subroutine(const std::string &name,
+                                        SourcePosition where,
+                                        const std::string &unknown) const;
 
     // The address of `size` fresh words at the end of memory (language.md §7).
     unsigned allocate_temporary(unsigned size, SourcePosition where);

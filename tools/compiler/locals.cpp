@@ -40,13 +40,8 @@ std::string line_text(SourcePosition position)
 void check_calls(const Node &node, const Compilation &compilation)
 {
     if (node.kind == NodeKind::FunctionCall) {
-        std::optional<unsigned> index = compilation.find_subroutine(node.name);
-        if (!index)
-            fail(node.position,
-                 with_suggestion("Subroutine " + node.name + " is not defined",
-                                 node.name,
-                                 compilation.subroutines));
-        const Subroutine &called = compilation.signatures[*index];
+        const Subroutine &called = compilation.called_subroutine(
+          node.name, node.position, "Subroutine " + node.name + " is not defined");
         if (!node.is_statement && !called.returns_value())
             fail(node.position,
                  "Subroutine " + node.name +
