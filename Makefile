@@ -22,6 +22,10 @@ WARNINGS := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wundef
 C_STANDARD := -std=gnu99
 CXX_STANDARD := -std=c++20
 INCLUDES := -I. -Ivm -Inative_functions
+# Every build names its target's one configuration header (docs/porting.md);
+# the host variants are the host target, the simulated e-puck.
+HOST_TARGET_CONFIG := '-DTARGET_CONFIG="hal/host/host_config.h"'
+INCLUDES += $(HOST_TARGET_CONFIG)
 
 # Build variants: the plain host build, and the one the tests run in.
 VARIANTS := host host-sanitize
@@ -99,10 +103,9 @@ deps:
 	@scripts/install-deps.sh
 
 # The portable layers must build warning-free where `int` is 16 bits (the
-# dsPIC's case, here avr-gcc) and on a 32-bit microcontroller. *_dspic30.c
-# files use XC16's DSP builtins: only the dsPIC30F build compiles them.
-PORTABLE_SOURCES := $(filter-out %_dspic30.c,$(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c \
-                                                        bootloader/*.c))
+# dsPIC's case, here avr-gcc) and on a 32-bit microcontroller; they are
+# compiled with the e-puck target's configuration (scripts/cross-check.sh).
+PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c firmware/*.c drivers/*/*.c bootloader/*.c)
 cross-check: | $(DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
 

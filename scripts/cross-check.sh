@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Builds the portable layers (VM, node protocol, natives) with avr-gcc, whose
-# `int` is 16 bits like the dsPIC's, and with arm-none-eabi-gcc for a
-# Cortex-M4, warnings as errors, and prints their code and constant-data
-# sizes per layer.
+# Builds the portable layers (VM, node protocol, natives, firmware, drivers,
+# store and bootloader core) with avr-gcc, whose `int` is 16 bits like the
+# dsPIC's, and with arm-none-eabi-gcc for a Cortex-M4, warnings as errors,
+# against the e-puck target's configuration (hal/dspic30/dspic30_config.h),
+# and prints their code and constant-data sizes per layer.
 # Usage: cross-check.sh BUILD_DIR SOURCE...
 set -euo pipefail
 build=$1
@@ -10,7 +11,8 @@ shift
 sources=("$@")
 
 flags=(-std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef
-       -ffunction-sections -fdata-sections -Ivm -Inative_functions -I.)
+       -ffunction-sections -fdata-sections -Ivm -Inative_functions -I.
+       '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"')
 
 # The layer a source belongs to, for the size table.
 layer_of() {
@@ -19,6 +21,7 @@ layer_of() {
     vm/*) echo "vm" ;;
     native_functions/nat_dsp*) echo "dsp natives" ;;
     drivers/*) echo "drivers" ;;
+    firmware/*) echo "firmware" ;;
     bootloader/*) echo "storage, bootloader" ;;
     native_functions/*) echo "natives" ;;
     *) echo "other" ;;
@@ -61,7 +64,11 @@ image() { # name compiler size-tool flags...
     local name=$1 compiler=$2 size_tool=$3
     shift 3
     local elf=$build/cross-$name/node-image.elf
-    "$compiler" "${flags[@]}" "$@" -Wl,--gc-sections "${sources[@]}" tests/cross/node_image.c \
+    local layers=()
+    for source in "${sources[@]}"; do
+        case $source in vm/* | native_functions/*) layers+=("$source") ;; esac
+    done
+    "$compiler" "${flags[@]}" "$@" -Wl,--gc-sections "${layers[@]}" tests/cross/node_image.c \
         -o "$elf"
     "$size_tool" -A "$elf" | awk -v name="$name" '
         $1 ~ /^\.(text|init|fini)/ { code += $2 }
@@ -83,7 +90,7 @@ bootloader_image() { # name compiler size-tool flags...
     shift 3
     local elf=$build/cross-$name/bootloader-image.elf
     "$compiler" "${flags[@]}" "$@" -DDSPIC30_SIMULATED_REGISTERS -Wl,--gc-sections \
-        bootloader/bootloader_main_dspic30.c bootloader/bootloader.c \
+        hal/dspic30/dspic30_bootloader_main.c bootloader/bootloader.c \
         bootloader/boot_application.c bootloader/bytecode_store.c \
         hal/dspic30/dspic30_clock.c hal/dspic30/dspic30_gpio.c hal/dspic30/dspic30_uart.c \
         hal/dspic30/dspic30_nvm.c drivers/epuck/epuck_selector.c vm/node_description.c \

@@ -63,4 +63,7 @@ void dspic30_simulated_jump(uint16_t address)
 
 void _T1Interrupt(void);
 void _U1RXInterrupt(void);
-void (*volatile const bootloader_handlers[])(void) = { _T1Interrupt, _U1RXInterrupt };
+void _U1TXInterrupt(void);
+void (*volatile const bootloader_handlers[])(void) = { _T1Interrupt,
+                                                       _U1RXInterrupt,
+                                                       _U1TXInterrupt };
