@@ -38,7 +38,8 @@ bool boot_application_valid(hal_board *board, uint32_t *entry)
 
     if (descriptor_word(board, BOOT_DESCRIPTOR_MAGIC_INDEX) != BOOT_DESCRIPTOR_MAGIC)
         return false;
-    if (end <= BOOT_CHECKED_START || end > BOOT_DESCRIPTOR_ADDRESS || end % HAL_FLASH_WORD_SPAN != 0)
+    if (end <= BOOT_CHECKED_START || end > BOOT_DESCRIPTOR_ADDRESS ||
+        end % HAL_FLASH_WORD_SPAN != 0)
         return false;
     if (start_address < BOOT_APPLICATION_START || start_address >= end ||
         start_address >= BOOT_ENTRY_LIMIT || start_address % HAL_FLASH_WORD_SPAN != 0 ||

@@ -87,8 +87,8 @@ static bool erase_page(hal_board *board, uint32_t address)
 {
     uint32_t unit_start;
 
-    return hal_flash_unit(board, address, &unit_start) == BOOT_PAGE_SPAN &&
-           unit_start == address && hal_flash_erase(board, address);
+    return hal_flash_unit(board, address, &unit_start) == BOOT_PAGE_SPAN && unit_start == address &&
+           hal_flash_erase(board, address);
 }
 
 static bool page_writable(uint16_t page)

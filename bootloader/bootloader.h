@@ -13,9 +13,8 @@
 // written or read; what lies below it (on the e-puck the reset GOTO and
 // vector tables), the bytecode store and the bootloaders above it are
 // refused, so the bootloader never erases itself or the way to it. A page
-// that already holds its data is not rewritten. Every page write but the descriptor's first erases the
-// descriptor, so an interrupted flashing leaves no valid application and
-// the bootloader stays.
+// that already holds its data is not rewritten. Every page write but the descriptor's first erases
+// the descriptor, so an interrupted flashing leaves no valid application and the bootloader stays.
 //
 // Usage: boot_start once after reset, then boot_poll in a loop until it
 // says to start the application (the chip then jumps to the entry address

@@ -13,7 +13,10 @@
 #define HEADER_CRC           6u
 #define HEADER_CHECKED_BYTES 6u // magic, sequence, count: covered by the CRC
 #define NO_SLOT              0xFFFFu
-#define FIRST_SEQUENCE       1u
+
+typedef char
+  settings_fit_their_slot[STORE_SETTINGS_CAPACITY_WORDS >= EPUCK_SETTINGS_WORDS ? 1 : -1];
+#define FIRST_SEQUENCE 1u
 
 static uint32_t block_address(const store_place *place, uint16_t slot, uint16_t block)
 {
@@ -281,10 +284,10 @@ bool epuck_store_load_settings(hal_board *board,
 
 uint16_t epuck_store_node_id(hal_board *board, uint16_t selector_position)
 {
-    uint16_t settings[STORE_SETTINGS_CAPACITY_WORDS];
+    uint16_t settings[EPUCK_SETTINGS_WORDS];
     uint16_t count;
 
-    if (epuck_store_load_settings(board, settings, STORE_SETTINGS_CAPACITY_WORDS, &count) &&
+    if (epuck_store_load_settings(board, settings, EPUCK_SETTINGS_WORDS, &count) &&
         count > EPUCK_SETTINGS_NODE_ID && settings[EPUCK_SETTINGS_NODE_ID] >= 1u &&
         settings[EPUCK_SETTINGS_NODE_ID] <= EPUCK_SETTINGS_NODE_ID_MAX)
         return settings[EPUCK_SETTINGS_NODE_ID];

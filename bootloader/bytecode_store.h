@@ -31,15 +31,15 @@
 
 #include "hal/hal.h"
 
-#define STORE_SLOT_COUNT      2u
-#define STORE_BLOCK_WORDS     32u // flash words written at once
-#define STORE_BYTES_PER_WORD  (HAL_FLASH_WORD_BITS / 8u)
-#define STORE_BLOCK_BYTES     (STORE_BLOCK_WORDS * STORE_BYTES_PER_WORD)
-#define STORE_BLOCK_SPAN      (STORE_BLOCK_WORDS * HAL_FLASH_WORD_SPAN) // address units
-#define STORE_HEADER_BYTES    8u // magic, sequence, count, crc
-#define STORE_WORD_BYTES      2u
-typedef char store_block_is_whole_program_runs[STORE_BLOCK_WORDS % HAL_FLASH_PROGRAM_WORDS == 0 ? 1
-                                                                                                : -1];
+#define STORE_SLOT_COUNT     2u
+#define STORE_BLOCK_WORDS    32u // flash words written at once
+#define STORE_BYTES_PER_WORD (HAL_FLASH_WORD_BITS / 8u)
+#define STORE_BLOCK_BYTES    (STORE_BLOCK_WORDS * STORE_BYTES_PER_WORD)
+#define STORE_BLOCK_SPAN     (STORE_BLOCK_WORDS * HAL_FLASH_WORD_SPAN) // address units
+#define STORE_HEADER_BYTES   8u // magic, sequence, count, crc
+#define STORE_WORD_BYTES     2u
+typedef char
+  store_block_is_whole_program_runs[STORE_BLOCK_WORDS % HAL_FLASH_PROGRAM_WORDS == 0 ? 1 : -1];
 
 // How many blocks a slot needs for `words` payload words, and the most
 // payload words `blocks` blocks hold.
@@ -55,9 +55,10 @@ typedef char store_block_is_whole_program_runs[STORE_BLOCK_WORDS % HAL_FLASH_PRO
 #define STORE_MAGIC_BYTECODE 0xB17Eu
 #define STORE_MAGIC_SETTINGS 0x5E77u
 
-// The settings record: word EPUCK_SETTINGS_NODE_ID is the node id the robot
-// answers to (a valid id is 1..EPUCK_SETTINGS_NODE_ID_MAX); the words after
-// it are for calibration.
+// The settings record, at most EPUCK_SETTINGS_WORDS words (one dsPIC row):
+// word EPUCK_SETTINGS_NODE_ID is the node id the robot answers to (a valid id
+// is 1..EPUCK_SETTINGS_NODE_ID_MAX); the words after it are for calibration.
+#define EPUCK_SETTINGS_WORDS       44u
 #define EPUCK_SETTINGS_NODE_ID     0u
 #define EPUCK_SETTINGS_NODE_ID_MAX 0xFFFEu // 0xFFFF is the broadcast address
 // Without one, the node id is (selector & EPUCK_SELECTOR_NODE_MASK) + 1
@@ -119,7 +120,8 @@ bool epuck_store_load_bytecode(hal_board *board,
                                uint16_t *count);
 
 // Saves the settings words (node id, calibration; up to
-// STORE_SETTINGS_CAPACITY_WORDS); returns whether they are stored.
+// STORE_SETTINGS_CAPACITY_WORDS, of which the node reads
+// EPUCK_SETTINGS_WORDS); returns whether they are stored.
 bool epuck_store_save_settings(hal_board *board, const uint16_t *settings, uint16_t count);
 
 // Loads the newest stored settings; returns false when there are none.

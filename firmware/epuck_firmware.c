@@ -13,8 +13,8 @@
 // hold the whole bytecode memory.
 typedef char link_receives_a_whole_frame[HAL_LINK_RECEIVE_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
 typedef char link_queues_a_whole_frame[HAL_LINK_TRANSMIT_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
-typedef char store_holds_the_bytecode[STORE_BYTECODE_CAPACITY_WORDS >= EPUCK_BYTECODE_WORDS ? 1
-                                                                                               : -1];
+typedef char
+  store_holds_the_bytecode[STORE_BYTECODE_CAPACITY_WORDS >= EPUCK_BYTECODE_WORDS ? 1 : -1];
 
 static const node_named_variable epuck_variables[] = {
 #define EPUCK_VARIABLE_DESCRIPTION(identifier, name, size) { name, size },

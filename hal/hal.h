@@ -23,7 +23,8 @@
 #include TARGET_CONFIG
 
 #if !defined(HAL_LINK_RECEIVE_CAPACITY) || !defined(HAL_LINK_TRANSMIT_CAPACITY)
-#error "the target's configuration must give HAL_LINK_RECEIVE_CAPACITY and HAL_LINK_TRANSMIT_CAPACITY"
+#error                                                                                             \
+  "the target's configuration must give HAL_LINK_RECEIVE_CAPACITY and HAL_LINK_TRANSMIT_CAPACITY"
 #endif
 #if !defined(HAL_FLASH_WORD_BITS) || !defined(HAL_FLASH_WORD_SPAN) ||                              \
   !defined(HAL_FLASH_PROGRAM_WORDS) || !defined(HAL_FLASH_ERASED) || !defined(HAL_FLASH_END)

@@ -33,7 +33,7 @@ typedef struct epuck_accelerometer {
 
 // The ADC channels of the three axes (bit n = ANn).
 #define EPUCK_ACCELEROMETER_CHANNELS                                                               \
-    ((uint16_t)((1u << EPUCK_ADC_ACCELEROMETER_X) | (1u << EPUCK_ADC_ACCELEROMETER_Y) |                \
+    ((uint16_t)((1u << EPUCK_ADC_ACCELEROMETER_X) | (1u << EPUCK_ADC_ACCELEROMETER_Y) |            \
                 (1u << EPUCK_ADC_ACCELEROMETER_Z)))
 
 // Prepares the accelerometer, uncalibrated.

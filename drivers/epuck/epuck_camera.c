@@ -140,7 +140,8 @@ static bool write_table(hal_board *board, const register_value *table, uint16_t 
     uint16_t i;
 
     for (i = 0; i < count; i++) {
-        if (!epuck_board_i2c_write(board, EPUCK_I2C_CAMERA_ADDRESS, table[i].reg, &table[i].value, 1))
+        if (!epuck_board_i2c_write(
+              board, EPUCK_I2C_CAMERA_ADDRESS, table[i].reg, &table[i].value, 1))
             return false;
     }
     return true;

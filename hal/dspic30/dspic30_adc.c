@@ -108,9 +108,9 @@ static bool scan_parameters(uint16_t mask, uint8_t *count, uint16_t *adcs)
 }
 
 bool epuck_board_adc_scan_start(hal_board *board,
-                        uint16_t channel_mask,
-                        epuck_adc_scan_callback callback,
-                        void *context)
+                                uint16_t channel_mask,
+                                epuck_adc_scan_callback callback,
+                                void *context)
 {
     uint8_t count;
     uint16_t adcs;

@@ -81,12 +81,12 @@ void dspic30_i2c_init(hal_board *board);
 void dspic30_uart_wait_sent(hal_board *board);
 
 // The interrupt handlers; each clears its own flag.
-void dspic30_on_clock_tick(hal_board *board);             // Timer1
-void dspic30_on_uart1_receive(hal_board *board);          // U1RX
-void dspic30_on_uart1_transmit(hal_board *board);         // U1TX
+void dspic30_on_clock_tick(hal_board *board);               // Timer1
+void dspic30_on_uart1_receive(hal_board *board);            // U1RX
+void dspic30_on_uart1_transmit(hal_board *board);           // U1TX
 void dspic30_on_timer(hal_board *board, epuck_timer timer); // T2..T5
-void dspic30_on_adc(hal_board *board);                    // ADC
-void dspic30_on_remote_edge(hal_board *board);            // INT0
+void dspic30_on_adc(hal_board *board);                      // ADC
+void dspic30_on_remote_edge(hal_board *board);              // INT0
 
 // The data EEPROM (DSPIC30_EEPROM_WORDS words of 16 bits; nothing in the
 // firmware uses it yet): the word at `index` (DSPIC30_EEPROM_ERASED out of

@@ -27,7 +27,7 @@
 #ifndef NAT_DSP_SIMULATED_DSP_ENGINE
 #include "dspic30_registers.h"
 // CORCON by its data-space address, as the rest of the port reaches SFRs.
-#define CORCON                  (*(volatile uint16_t *)DSPIC30_CORCON)
+#define CORCON (*(volatile uint16_t *)DSPIC30_CORCON)
 // Accumulator A as a C variable, the way the XC16 guide's DSP builtin
 // examples declare it (`int` is 16 bits with XC16).
 #define DSP_ACCUMULATOR_A(name) volatile register int name asm("A")

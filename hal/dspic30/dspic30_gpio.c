@@ -113,7 +113,10 @@ bool epuck_board_pin_read(hal_board *board, epuck_pin pin)
     return (dspic30_read((uint16_t)(location->tris + offset)) >> location->bit) & 1u;
 }
 
-bool epuck_board_pin_watch_falling_edge(hal_board *board, epuck_pin pin, epuck_callback callback, void *context)
+bool epuck_board_pin_watch_falling_edge(hal_board *board,
+                                        epuck_pin pin,
+                                        epuck_callback callback,
+                                        void *context)
 {
     if (pin != EPUCK_PIN_REMOTE)
         return false;

@@ -111,7 +111,8 @@ uint16_t hal_link_send_room(hal_board *board)
 {
     uint16_t head = board->transmit_head;
     uint16_t tail = board->transmit_tail;
-    uint16_t used = head >= tail ? (uint16_t)(head - tail) : (uint16_t)(TRANSMIT_SLOTS - tail + head);
+    uint16_t used =
+      head >= tail ? (uint16_t)(head - tail) : (uint16_t)(TRANSMIT_SLOTS - tail + head);
 
     return (uint16_t)(HAL_LINK_TRANSMIT_CAPACITY - used);
 }

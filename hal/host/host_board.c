@@ -156,10 +156,10 @@ uint16_t hal_link_send_room(hal_board *board)
 }
 
 bool epuck_board_timer_start(hal_board *board,
-                     epuck_timer timer,
-                     uint32_t period_microseconds,
-                     epuck_callback callback,
-                     void *context)
+                             epuck_timer timer,
+                             uint32_t period_microseconds,
+                             epuck_callback callback,
+                             void *context)
 {
     host_periodic *slot;
     uint64_t period;

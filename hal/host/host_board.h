@@ -22,7 +22,7 @@
 #include "host_world.h"
 
 // Program-flash words modelled: every instruction below HAL_FLASH_END.
-#define HOST_FLASH_WORDS (HAL_FLASH_END / HAL_FLASH_WORD_SPAN)
+#define HOST_FLASH_WORDS   (HAL_FLASH_END / HAL_FLASH_WORD_SPAN)
 #define HOST_EEPROM_ERASED 0xFFFFu
 
 // No fault injection planned.

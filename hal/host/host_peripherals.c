@@ -22,9 +22,9 @@ static bool scan_mask_supported(uint16_t mask)
 }
 
 bool epuck_board_adc_scan_start(hal_board *board,
-                        uint16_t channel_mask,
-                        epuck_adc_scan_callback callback,
-                        void *context)
+                                uint16_t channel_mask,
+                                epuck_adc_scan_callback callback,
+                                void *context)
 {
     if (!scan_mask_supported(channel_mask))
         return false;
@@ -83,7 +83,10 @@ bool epuck_board_pin_read(hal_board *board, epuck_pin pin)
     return board->world->pin_read(board->world->context, pin, board->cycles);
 }
 
-bool epuck_board_pin_watch_falling_edge(hal_board *board, epuck_pin pin, epuck_callback callback, void *context)
+bool epuck_board_pin_watch_falling_edge(hal_board *board,
+                                        epuck_pin pin,
+                                        epuck_callback callback,
+                                        void *context)
 {
     // As on the chip, only the remote receiver's line has an edge interrupt.
     if (pin != EPUCK_PIN_REMOTE)
@@ -113,15 +116,19 @@ void host_board_input_changed(hal_board *board, epuck_pin pin)
 }
 
 bool epuck_board_i2c_write(hal_board *board,
-                   uint8_t device,
-                   uint8_t reg,
-                   const uint8_t *bytes,
-                   uint16_t count)
+                           uint8_t device,
+                           uint8_t reg,
+                           const uint8_t *bytes,
+                           uint16_t count)
 {
     return board->world->i2c_write(board->world->context, device, reg, bytes, count);
 }
 
-bool epuck_board_i2c_read(hal_board *board, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count)
+bool epuck_board_i2c_read(hal_board *board,
+                          uint8_t device,
+                          uint8_t reg,
+                          uint8_t *bytes,
+                          uint16_t count)
 {
     return board->world->i2c_read(board->world->context, device, reg, bytes, count);
 }

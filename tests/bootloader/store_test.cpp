@@ -159,7 +159,7 @@ TEST(Store, SettingsAndBytecodeAreIndependent)
     ASSERT_TRUE(save_bytecode(board.get(), program(300, 5)));
     ASSERT_TRUE(epuck_store_save_settings(board.get(), settings.data(), 4));
     ASSERT_TRUE(save_bytecode(board.get(), program(200, 6)));
-    Words loaded(STORE_SETTINGS_CAPACITY_WORDS);
+    Words loaded(EPUCK_SETTINGS_WORDS);
     uint16_t count = 0;
     ASSERT_TRUE(epuck_store_load_settings(board.get(), loaded.data(), 44, &count));
     loaded.resize(count);
@@ -212,16 +212,10 @@ TEST(Store, PicksTheNewestSequenceAcrossTheWrap)
                     Case{ 0x7FFF, 0x8000, 1 },
                     Case{ 0xFFFE, 0xFFFF, 1 } }) {
         auto board = new_board();
-        write_slot(board.get(),
-                   STORE_BYTECODE_SLOT_0,
-                   STORE_MAGIC_BYTECODE,
-                   c.sequence0,
-                   program(20, 0));
-        write_slot(board.get(),
-                   STORE_BYTECODE_SLOT_1,
-                   STORE_MAGIC_BYTECODE,
-                   c.sequence1,
-                   program(20, 1));
+        write_slot(
+          board.get(), STORE_BYTECODE_SLOT_0, STORE_MAGIC_BYTECODE, c.sequence0, program(20, 0));
+        write_slot(
+          board.get(), STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, c.sequence1, program(20, 1));
         EXPECT_EQ(load_bytecode(board.get()), program(20, static_cast<uint16_t>(c.newest)))
           << c.sequence0 << " " << c.sequence1;
     }
@@ -230,10 +224,8 @@ TEST(Store, PicksTheNewestSequenceAcrossTheWrap)
 TEST(Store, SavingAfterTheWrapReplacesTheOlderSlot)
 {
     auto board = new_board();
-    write_slot(
-      board.get(), STORE_BYTECODE_SLOT_0, STORE_MAGIC_BYTECODE, 0xFFFE, program(20, 0));
-    write_slot(
-      board.get(), STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, 0xFFFF, program(20, 1));
+    write_slot(board.get(), STORE_BYTECODE_SLOT_0, STORE_MAGIC_BYTECODE, 0xFFFE, program(20, 0));
+    write_slot(board.get(), STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, 0xFFFF, program(20, 1));
     for (uint16_t seed = 2; seed < 6; seed++) { // sequences 0, 1, 2, 3
         ASSERT_TRUE(save_bytecode(board.get(), program(30, seed)));
         EXPECT_EQ(load_bytecode(board.get()), program(30, seed));

@@ -319,7 +319,7 @@ TEST_F(Dspic30, PortsFollowThePinMap)
     EXPECT_EQ(chip.sfr(LATD), 1u << 6);
     EXPECT_TRUE(epuck_board_pin_read(&board, EPUCK_PIN_MOTOR_RIGHT_C));
     epuck_board_pin_write(&board, EPUCK_PIN_SELECTOR_0, true); // an input: ignored
-    chip.sfr(PORTG) = 0x0280;                        // RG7, RG9
+    chip.sfr(PORTG) = 0x0280;                                  // RG7, RG9
     int selector = 0;
     for (int bit = 0; bit < 4; bit++)
         selector |= epuck_board_pin_read(&board, epuck_pin(EPUCK_PIN_SELECTOR_0 + bit)) << bit;
@@ -375,8 +375,8 @@ TEST_F(Dspic30, FlashRowEraseWriteReadEndToEnd)
     for (uint32_t i = 0; i < 32; i++)
         EXPECT_EQ(hal_flash_read(&board, row + 2 * i), instructions[i]) << i;
     EXPECT_EQ(hal_flash_read(&board, row + 0x40), 0xFFFFFFu); // next row untouched
-    EXPECT_FALSE(hal_flash_erase(&board, row + 2));       // not a row start
-    EXPECT_FALSE(hal_flash_erase(&board, 0x018000));      // past the end
+    EXPECT_FALSE(hal_flash_erase(&board, row + 2));           // not a row start
+    EXPECT_FALSE(hal_flash_erase(&board, 0x018000));          // past the end
 }
 
 TEST_F(Dspic30, UnlockIsKeyFiveFiveKeyAAThenWriteWithInterruptsMasked)

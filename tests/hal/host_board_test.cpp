@@ -78,7 +78,8 @@ TEST_F(HostBoard, TimersInterleaveInTimeOrder)
     Recorder recorder{ board.get(), {} };
     Tag left{ &recorder, 1 }, right{ &recorder, 2 };
     ASSERT_TRUE(epuck_board_timer_start(board.get(), EPUCK_TIMER_MOTOR_LEFT, 3000, record, &left));
-    ASSERT_TRUE(epuck_board_timer_start(board.get(), EPUCK_TIMER_MOTOR_RIGHT, 2000, record, &right));
+    ASSERT_TRUE(
+      epuck_board_timer_start(board.get(), EPUCK_TIMER_MOTOR_RIGHT, 2000, record, &right));
     // Advance in uneven slices; the order must not depend on them.
     for (int i = 0; i < 7; i++)
         host_board_advance(board.get(), uint64_t(FCY * 0.0017));
@@ -204,7 +205,8 @@ TEST_F(HostBoard, OutputsReachTheWorldAndEdgesComeBack)
 
     int edges = 0;
     auto count = [](void *context) { ++*static_cast<int *>(context); };
-    EXPECT_FALSE(epuck_board_pin_watch_falling_edge(board.get(), EPUCK_PIN_SELECTOR_0, count, &edges));
+    EXPECT_FALSE(
+      epuck_board_pin_watch_falling_edge(board.get(), EPUCK_PIN_SELECTOR_0, count, &edges));
     ASSERT_TRUE(epuck_board_pin_watch_falling_edge(board.get(), EPUCK_PIN_REMOTE, count, &edges));
     world.remote = false;
     host_board_input_changed(board.get(), EPUCK_PIN_REMOTE);
@@ -258,9 +260,9 @@ TEST_F(HostBoard, FlashRowsAreErasedAndProgrammedWhole)
         EXPECT_EQ(hal_flash_read(board.get(), row + 2 * i), 0xFFFFFFu);
     EXPECT_FALSE(hal_flash_erase(board.get(), row + 0x20));
     EXPECT_FALSE(hal_flash_program(board.get(), 0x018000, first.data(), 32));
-    EXPECT_FALSE(hal_flash_program(board.get(), row, first.data(), 31)); // not a whole row
+    EXPECT_FALSE(hal_flash_program(board.get(), row, first.data(), 31));        // not a whole row
     EXPECT_FALSE(hal_flash_program(board.get(), row + 0x40, first.data(), 32)); // past the end
-    EXPECT_EQ(hal_flash_read(board.get(), row + 1), 0u); // odd address
+    EXPECT_EQ(hal_flash_read(board.get(), row + 1), 0u);                        // odd address
 }
 
 TEST_F(HostBoard, PowerCutTearsTheInterruptedOperationAndStopsTheRest)
@@ -268,7 +270,7 @@ TEST_F(HostBoard, PowerCutTearsTheInterruptedOperationAndStopsTheRest)
     const uint32_t row = 0x004000;
     std::vector<uint32_t> zeros(32, 0);
     host_board_cut_power_at(board.get(), 2);
-    ASSERT_TRUE(host_board_eeprom_write_word(board.get(), 0, 0));             // operation 1
+    ASSERT_TRUE(host_board_eeprom_write_word(board.get(), 0, 0));        // operation 1
     EXPECT_FALSE(hal_flash_program(board.get(), row, zeros.data(), 32)); // 2: cut
     for (uint32_t i = 0; i < 32; i++)
         EXPECT_EQ(hal_flash_read(board.get(), row + 2 * i), i < 16 ? 0u : 0xFFFFFFu) << i;

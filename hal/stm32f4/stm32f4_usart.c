@@ -1,0 +1,144 @@
+// USART1, the link to the hosts: 8N1 at STM32F4_LINK_BAUD on PA9/PA10.
+// Received bytes go by interrupt into the board's receive ring; bytes to
+// send wait in the transmit ring, moved into the data register as it
+// empties, from the transmit-empty interrupt on a real chip or by polling on
+// QEMU (STM32F4_TRANSMIT_BY_INTERRUPT), so that sending never waits.
+
+#include "stm32f4_board.h"
+#include "stm32f4_registers.h"
+
+#define RECEIVE_MASK (HAL_LINK_RECEIVE_CAPACITY - 1u)
+typedef char
+  receive_capacity_is_a_power_of_two[(HAL_LINK_RECEIVE_CAPACITY & RECEIVE_MASK) == 0 ? 1 : -1];
+
+#define TRANSMIT_SLOTS         (HAL_LINK_TRANSMIT_CAPACITY + 1u)
+#define APB2_HZ                (STM32F4_HSE_HZ != 0 ? STM32F4_CPU_HZ / 2u : STM32F4_RESET_CLOCK_HZ)
+#define PA9_PA10_MODE          (STM32F4_MODER_ALTERNATE << 18 | STM32F4_MODER_ALTERNATE << 20)
+#define PA9_PA10_MODE_MASK     (0x3ul << 18 | 0x3ul << 20)
+#define PA9_PA10_AF            (STM32F4_AF_USART1 << 4 | STM32F4_AF_USART1 << 8)
+#define PA9_PA10_AF_MASK       (0xFul << 4 | 0xFul << 8)
+#define STM32F4_RESET_CLOCK_HZ 16000000ul // the internal oscillator (RM0090 §6.2.2)
+
+static uint16_t next_transmit_slot(uint16_t index)
+{
+    index++;
+    return index == TRANSMIT_SLOTS ? 0 : index;
+}
+
+void stm32f4_usart_init(hal_board *board)
+{
+    board->receive_head = 0;
+    board->receive_tail = 0;
+    board->receive_overruns = 0;
+    board->transmit_head = 0;
+    board->transmit_tail = 0;
+
+    stm32f4_set_bits(STM32F4_RCC_AHB1ENR, STM32F4_AHB1ENR_GPIOAEN);
+    stm32f4_set_bits(STM32F4_RCC_APB2ENR, STM32F4_APB2ENR_USART1EN);
+    stm32f4_write(STM32F4_GPIOA_MODER,
+                  (stm32f4_read(STM32F4_GPIOA_MODER) & ~PA9_PA10_MODE_MASK) | PA9_PA10_MODE);
+    stm32f4_write(STM32F4_GPIOA_AFRH,
+                  (stm32f4_read(STM32F4_GPIOA_AFRH) & ~PA9_PA10_AF_MASK) | PA9_PA10_AF);
+    // Oversampling by 16: BRR holds the clock divided by the baud rate,
+    // rounded (RM0090 §30.3.4).
+    stm32f4_write(STM32F4_USART1_BRR, (APB2_HZ + STM32F4_LINK_BAUD / 2u) / STM32F4_LINK_BAUD);
+    stm32f4_write(STM32F4_USART1_CR1,
+                  STM32F4_USART_CR1_UE | STM32F4_USART_CR1_TE | STM32F4_USART_CR1_RE |
+                    STM32F4_USART_CR1_RXNEIE);
+    stm32f4_write_byte(STM32F4_NVIC_IPR0 + STM32F4_IRQ_USART1,
+                       (uint8_t)(STM32F4_PRIORITY_USART1 << STM32F4_PRIORITY_SHIFT));
+    stm32f4_write(STM32F4_NVIC_ISER0 + 4u * (STM32F4_IRQ_USART1 / 32u),
+                  1ul << (STM32F4_IRQ_USART1 % 32u));
+}
+
+// Moves waiting bytes into the data register while it is empty; with
+// interrupts, keeps the transmit-empty interrupt on exactly while bytes wait.
+// Runs with the USART's interrupt held off.
+static void fill_data_register(hal_board *board)
+{
+    uint16_t tail = board->transmit_tail;
+
+    while (tail != board->transmit_head &&
+           (stm32f4_read(STM32F4_USART1_SR) & STM32F4_USART_SR_TXE) != 0) {
+        stm32f4_write(STM32F4_USART1_DR, board->transmit[tail]);
+        tail = next_transmit_slot(tail);
+    }
+    board->transmit_tail = tail;
+    if (STM32F4_TRANSMIT_BY_INTERRUPT) {
+        if (tail == board->transmit_head)
+            stm32f4_clear_bits(STM32F4_USART1_CR1, STM32F4_USART_CR1_TXEIE);
+        else
+            stm32f4_set_bits(STM32F4_USART1_CR1, STM32F4_USART_CR1_TXEIE);
+    }
+}
+
+void stm32f4_usart_drain(hal_board *board)
+{
+    hal_critical_state state = hal_critical_enter(board);
+    fill_data_register(board);
+    hal_critical_leave(board, state);
+}
+
+void stm32f4_on_usart1(hal_board *board)
+{
+    uint32_t status = stm32f4_read(STM32F4_USART1_SR);
+
+    // Reading SR then DR clears RXNE and an overrun (RM0090 §30.6.1).
+    while (status & (STM32F4_USART_SR_RXNE | STM32F4_USART_SR_ORE)) {
+        uint8_t byte = (uint8_t)stm32f4_read(STM32F4_USART1_DR);
+        uint16_t next = (uint16_t)((board->receive_head + 1u) & RECEIVE_MASK);
+        if (status & STM32F4_USART_SR_ORE)
+            board->receive_overruns++;
+        if (next == board->receive_tail) {
+            board->receive_overruns++;
+        } else {
+            board->receive[board->receive_head] = byte;
+            board->receive_head = next;
+        }
+        status = stm32f4_read(STM32F4_USART1_SR);
+    }
+    if (STM32F4_TRANSMIT_BY_INTERRUPT)
+        fill_data_register(board);
+}
+
+uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
+{
+    uint16_t count = 0;
+    uint16_t tail = board->receive_tail;
+
+    // Only this side moves the tail; the interrupt only moves the head.
+    while (count < capacity && tail != board->receive_head) {
+        bytes[count++] = board->receive[tail];
+        tail = (uint16_t)((tail + 1u) & RECEIVE_MASK);
+    }
+    board->receive_tail = tail;
+    return count;
+}
+
+uint16_t hal_link_send_room(hal_board *board)
+{
+    uint16_t head = board->transmit_head;
+    uint16_t tail = board->transmit_tail;
+    uint16_t used =
+      head >= tail ? (uint16_t)(head - tail) : (uint16_t)(TRANSMIT_SLOTS - tail + head);
+
+    return (uint16_t)(HAL_LINK_TRANSMIT_CAPACITY - used);
+}
+
+uint16_t hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)
+{
+    uint16_t room = hal_link_send_room(board);
+    uint16_t head = board->transmit_head;
+    uint16_t i;
+
+    if (count > room)
+        count = room;
+    // Only this side moves the head; the sending side only moves the tail.
+    for (i = 0; i < count; i++) {
+        board->transmit[head] = bytes[i];
+        head = next_transmit_slot(head);
+    }
+    board->transmit_head = head;
+    stm32f4_usart_drain(board);
+    return count;
+}
