@@ -1,7 +1,8 @@
 // UART1, the Bluetooth link (§2.1, §3.11): 115200 8N1. Received bytes go by
 // interrupt into the board's receive ring; bytes to send wait in the
-// transmit ring, which the transmit interrupt moves into the 4-byte FIFO as
-// room appears, so that sending never waits for the line.
+// transmit ring, which the transmit interrupt moves into the 4-byte buffer
+// each time it empties (as the library does), so that sending never waits
+// for the line.
 
 #include "dspic30_board.h"
 #include "dspic30_registers.h"
@@ -38,10 +39,10 @@ void dspic30_uart_init(hal_board *board)
     dspic30_clear_bits(DSPIC30_IFS0, DSPIC30_IRQ0_U1RX | DSPIC30_IRQ0_U1TX);
     dspic30_clear_bits(DSPIC30_IEC0, DSPIC30_IRQ0_U1TX); // enabled while bytes wait
     dspic30_write(DSPIC30_U1MODE, DSPIC30_UMODE_UARTEN);
-    // Transmitter on; UTXISEL = 0: a transmit interrupt whenever a byte
-    // leaves the FIFO for the shift register (there is room again);
+    // Transmitter on; UTXISEL = 1: a transmit interrupt when the buffer has
+    // emptied, refilled 4 bytes at a time (the library's choice, §2.1);
     // URXISEL = 00: a receive interrupt for every byte.
-    dspic30_write(DSPIC30_U1STA, DSPIC30_USTA_UTXEN);
+    dspic30_write(DSPIC30_U1STA, DSPIC30_USTA_UTXEN | DSPIC30_USTA_UTXISEL);
     dspic30_set_bits(DSPIC30_IEC0, DSPIC30_IRQ0_U1RX);
 }
 
@@ -82,10 +83,10 @@ uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
     return count;
 }
 
-// Moves waiting bytes into the FIFO while it has room, and keeps the
-// transmit interrupt enabled exactly while bytes wait. Runs with the UART's
+// Moves waiting bytes into the transmit buffer while it has room, and keeps
+// the transmit interrupt enabled exactly while bytes wait. Runs with the UART's
 // interrupts held off (in the handler, or in a critical section).
-static void fill_fifo(hal_board *board)
+static void fill_transmit_buffer(hal_board *board)
 {
     uint16_t tail = board->transmit_tail;
 
@@ -104,7 +105,7 @@ static void fill_fifo(hal_board *board)
 void dspic30_on_uart1_transmit(hal_board *board)
 {
     dspic30_clear_bits(DSPIC30_IFS0, DSPIC30_IRQ0_U1TX);
-    fill_fifo(board);
+    fill_transmit_buffer(board);
 }
 
 uint16_t hal_link_send_room(hal_board *board)
@@ -134,7 +135,7 @@ uint16_t hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)
     board->transmit_head = head;
     // An idle transmitter raises no interrupt: start it here.
     state = hal_critical_enter(board);
-    fill_fifo(board);
+    fill_transmit_buffer(board);
     hal_critical_leave(board, state);
     return count;
 }

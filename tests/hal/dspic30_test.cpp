@@ -41,6 +41,42 @@ uint16_t field(uint16_t value, int high, int low)
     return uint16_t((value >> low) & ((1u << (high - low + 1)) - 1));
 }
 
+// The interrupt sources the board uses: their enable bit and their
+// priority field, where the fact sheet puts them (§1.7 table, §2.6).
+struct Source {
+    const char *name;
+    uint16_t enable_register;
+    uint16_t enable_bit;
+    uint16_t priority_register;
+    int high, low; // the priority field's bits
+};
+constexpr Source int0{ "INT0", IEC0, 0x0001, IPC0, 2, 0 };
+constexpr Source t1{ "T1", IEC0, 0x0008, IPC0, 14, 12 };
+constexpr Source t2{ "T2", IEC0, 0x0040, IPC1, 10, 8 };
+constexpr Source t3{ "T3", IEC0, 0x0080, IPC1, 14, 12 };
+constexpr Source u1rx{ "U1RX", IEC0, 0x0200, IPC2, 6, 4 };
+constexpr Source u1tx{ "U1TX", IEC0, 0x0400, IPC2, 10, 8 };
+constexpr Source adc{ "ADC", IEC0, 0x0800, IPC2, 14, 12 };
+constexpr Source t4{ "T4", IEC1, 0x0020, IPC5, 6, 4 };
+constexpr Source t5{ "T5", IEC1, 0x0040, IPC5, 10, 8 };
+constexpr Source sources[] = { int0, t1, t2, t3, u1rx, u1tx, adc, t4, t5 };
+
+uint16_t priority(simulated::Chip &chip, const Source &source)
+{
+    return field(chip.sfr(source.priority_register), source.high, source.low);
+}
+
+// §1.7: priorities are 1 to 7, and 0 disables the source: its interrupt
+// would never be taken, whatever its enable bit says.
+::testing::AssertionResult can_interrupt(simulated::Chip &chip, const Source &source)
+{
+    uint16_t level = priority(chip, source);
+    if (level >= 1 && level <= 7)
+        return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << source.name << " has priority " << level << ": the chip would never take it";
+}
+
 struct Dspic30 : ::testing::Test {
     simulated::Chip chip;
     hal_board board{};
@@ -86,7 +122,7 @@ TEST_F(Dspic30, MillisecondClockCountsTimer1Ticks)
     EXPECT_EQ(chip.sfr(T1CON), 0x8000); // TON, TCKPS = 00, internal clock
     EXPECT_EQ(chip.sfr(TMR1), 0);
     EXPECT_NE(chip.sfr(IEC0) & 0x0008, 0);
-    EXPECT_EQ(field(chip.sfr(IPC0), 14, 12), DSPIC30_PRIORITY_CLOCK);
+    EXPECT_TRUE(can_interrupt(chip, t1));
     for (int i = 0; i < 512; i++) {
         chip.sfr(IFS0) |= 0x0008;
         dspic30_on_clock_tick(&board);
@@ -115,9 +151,12 @@ TEST_F(Dspic30, Uart1RunsAt115200EightNOneWithReceiveInterrupt)
     auto modes = writes_to(U1MODE);
     ASSERT_FALSE(modes.empty());
     EXPECT_EQ(modes.back(), 0x8000);
-    EXPECT_NE(chip.sfr(IEC0) & 0x0200, 0);     // U1RXIE
-    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0);     // U1TXIE off: sending polls
-    EXPECT_EQ(field(chip.sfr(IPC2), 6, 4), 5); // U1RX priority 5 as the library
+    EXPECT_EQ(status & 0x8000, 0x8000); // UTXISEL: when the buffer empties, as the library
+    EXPECT_NE(chip.sfr(IEC0) & 0x0200, 0); // U1RXIE
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0); // U1TXIE: only while bytes wait
+    // §2.1: the library runs both UART1 interrupts at priority 5.
+    EXPECT_EQ(priority(chip, u1rx), 5);
+    EXPECT_EQ(priority(chip, u1tx), 5);
 }
 
 TEST_F(Dspic30, ReceivedBytesGoThroughTheRingToTheLink)
@@ -161,11 +200,38 @@ TEST_F(Dspic30, OverrunIsCleared)
     EXPECT_EQ(chip.sfr(U1STA) & 0x0002, 0);
 }
 
-TEST_F(Dspic30, LinkSendWritesTransmitRegister)
+// Sending never waits for the line: the ring takes what fits, the
+// transmit buffer gets 4 bytes at once, and each time the line empties it
+// the interrupt refills it, until the ring is empty.
+TEST_F(Dspic30, LinkSendQueuesAndTheTransmitInterruptDrains)
 {
-    const uint8_t bytes[] = { 0x01, 0x00, 0xFE, 0xFF, 0x42 };
-    hal_link_send(&board, bytes, sizeof bytes);
-    EXPECT_EQ(chip.uart_sent, std::vector<uint8_t>(bytes, bytes + sizeof bytes));
+    std::vector<uint8_t> bytes(600);
+    for (size_t i = 0; i < bytes.size(); i++)
+        bytes[i] = uint8_t(i * 7 + 3);
+    EXPECT_EQ(hal_link_send_room(&board), HAL_LINK_TRANSMIT_CAPACITY);
+    uint16_t taken = hal_link_send(&board, bytes.data(), uint16_t(bytes.size()));
+    ASSERT_EQ(taken, HAL_LINK_TRANSMIT_CAPACITY); // a whole frame fits (protocol.md §2)
+    EXPECT_GE(taken, 522);
+    EXPECT_EQ(chip.uart_fifo.size(), 4u);
+    EXPECT_EQ(hal_link_send_room(&board), 4);
+    EXPECT_NE(chip.sfr(IEC0) & 0x0400, 0); // U1TXIE while bytes wait
+    EXPECT_EQ(hal_link_send(&board, bytes.data(), 10), 4);
+
+    int interrupts = 0;
+    while (chip.uart_shift_out()) {
+        if ((chip.sfr(IFS0) & 0x0400) && (chip.sfr(IEC0) & 0x0400)) {
+            dspic30_on_uart1_transmit(&board);
+            interrupts++;
+            EXPECT_EQ(chip.sfr(IFS0) & 0x0400, 0);
+        }
+    }
+    std::vector<uint8_t> expected(bytes.begin(), bytes.begin() + taken);
+    expected.insert(expected.end(), bytes.begin(), bytes.begin() + 4);
+    EXPECT_EQ(chip.uart_sent, expected);
+    EXPECT_EQ(chip.uart_lost, 0);                    // never written while full
+    EXPECT_EQ(interrupts, (int(expected.size()) + 3) / 4 - 1); // one per 4 bytes after the first
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0);           // nothing left: U1TXIE off
+    EXPECT_EQ(hal_link_send_room(&board), HAL_LINK_TRANSMIT_CAPACITY);
 }
 
 TEST_F(Dspic30, AgendaTimerAt100MicrosecondsMatchesTheLibrary)
@@ -177,7 +243,7 @@ TEST_F(Dspic30, AgendaTimerAt100MicrosecondsMatchesTheLibrary)
     EXPECT_EQ(chip.sfr(PR2), 1474);
     EXPECT_EQ(chip.sfr(T2CON), 0x8000);
     EXPECT_NE(chip.sfr(IEC0) & 0x0040, 0);
-    EXPECT_EQ(field(chip.sfr(IPC1), 10, 8), DSPIC30_PRIORITY_TIMERS);
+    EXPECT_TRUE(can_interrupt(chip, t2));
     chip.sfr(IFS0) |= 0x0040;
     dspic30_on_timer(&board, EPUCK_TIMER_AGENDA);
     EXPECT_EQ(calls, 1);
@@ -209,8 +275,8 @@ TEST_F(Dspic30, MotorTimerPeriodsUseTheSmallestFittingPrescaler)
         }
     }
     EXPECT_NE(chip.sfr(IEC1) & 0x0060, 0); // T4IE, T5IE
-    EXPECT_EQ(field(chip.sfr(IPC5), 6, 4), DSPIC30_PRIORITY_TIMERS);
-    EXPECT_EQ(field(chip.sfr(IPC5), 10, 8), DSPIC30_PRIORITY_TIMERS);
+    EXPECT_TRUE(can_interrupt(chip, t4));
+    EXPECT_TRUE(can_interrupt(chip, t5));
     EXPECT_FALSE(epuck_board_timer_start(&board, EPUCK_TIMER_SPARE, 2000000, nullptr, nullptr));
     EXPECT_FALSE(epuck_board_timer_start(&board, EPUCK_TIMER_SPARE, 1, nullptr, nullptr));
     (void)IFS1;
@@ -224,7 +290,7 @@ TEST_F(Dspic30, AdcStartsInManualModeWithValidConversionClock)
     uint16_t adcs = field(chip.sfr(ADCON3), 5, 0);
     double tad = (adcs + 1) / 2.0 / FCY;
     EXPECT_GE(tad, 667e-9); // §2.3 minimum at 3.3 V
-    EXPECT_EQ(field(chip.sfr(IPC2), 14, 12), DSPIC30_PRIORITY_ADC);
+    EXPECT_TRUE(can_interrupt(chip, adc));
 }
 
 TEST_F(Dspic30, SingleConversionReadsTheChannel)
@@ -333,11 +399,44 @@ TEST_F(Dspic30, RemoteEdgesComeFromInt0)
     EXPECT_FALSE(epuck_board_pin_watch_falling_edge(&board, EPUCK_PIN_SELECTOR_0, count, &edges));
     ASSERT_TRUE(epuck_board_pin_watch_falling_edge(&board, EPUCK_PIN_REMOTE, count, &edges));
     EXPECT_NE(chip.sfr(IEC0) & 0x0001, 0);
-    EXPECT_EQ(field(chip.sfr(IPC0), 2, 0), DSPIC30_PRIORITY_REMOTE);
+    EXPECT_TRUE(can_interrupt(chip, int0));
     dspic30_on_remote_edge(&board);
     EXPECT_EQ(edges, 1);
     epuck_board_pin_unwatch(&board, EPUCK_PIN_REMOTE);
     EXPECT_EQ(chip.sfr(IEC0) & 0x0001, 0);
+}
+
+// Every source the board uses has a priority the chip takes, set at
+// start-up (§1.7: the reset value of the fields is not documented).
+TEST_F(Dspic30, EveryInterruptTheBoardUsesCanBeTaken)
+{
+    for (const Source &source : sources)
+        EXPECT_TRUE(can_interrupt(chip, source));
+}
+
+// The order follows from the timings: a scan's 5 results are overwritten
+// 61 µs later (16384 Hz, §2.3), UART1's 4-byte buffers fill or empty in
+// 347 µs (§2.1), a motor step may come a few µs late, and the millisecond
+// clock's ticks are 977 µs apart.
+TEST_F(Dspic30, PrioritiesFollowHowLongEachSourceCanWait)
+{
+    EXPECT_GT(priority(chip, adc), priority(chip, u1rx));
+    for (const Source &timer : { t2, t3, t4, t5 }) {
+        EXPECT_GT(priority(chip, u1rx), priority(chip, timer)) << timer.name;
+        EXPECT_GT(priority(chip, timer), priority(chip, t1)) << timer.name;
+    }
+}
+
+// The checks above can fail: a field cleared to 0 is caught.
+TEST_F(Dspic30, APriorityOfZeroIsCaught)
+{
+    for (const Source &source : sources) {
+        uint16_t &field_register = chip.sfr(source.priority_register);
+        uint16_t saved = field_register;
+        field_register = uint16_t(field_register & ~(0x7u << source.low));
+        EXPECT_FALSE(can_interrupt(chip, source)) << source.name;
+        field_register = saved;
+    }
 }
 
 TEST_F(Dspic30, CriticalSectionRaisesCpuPriorityToSeven)

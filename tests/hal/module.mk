@@ -13,6 +13,7 @@ $(foreach s,$(HAL_DSPIC30_SOURCES),\
   $(eval EXTRA_CFLAGS_$(basename $(s)) += -DDSPIC30_SIMULATED_REGISTERS -UTARGET_CONFIG \
                                           '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"'))
 EXTRA_CFLAGS_hal/dspic30/dspic30_application_main += -Dmain=dspic30_main
+EXTRA_CFLAGS_tests/hal/dspic30_test := -UTARGET_CONFIG '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"'
 
 TESTS += hal_dspic30_test
 hal_dspic30_test_SOURCES := tests/hal/dspic30_test.cpp tests/hal/simulated_chip.cpp \
