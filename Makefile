@@ -7,6 +7,8 @@
 #   make cross-check   the portable layers with 16- and 32-bit cross compilers
 #   make fuzz          every fuzz target for FUZZ_SECONDS (default 60) each
 #   make bench         performance figures beside the reference (docs/benchmarks.md)
+#   make dspic30       the e-puck's images, with Microchip XC16 (hal/dspic30/module.mk)
+#   make stm32f4       the STM32F4 image, run by QEMU in the tests (hal/stm32f4/module.mk)
 #   make run           the main job
 #   make format        clang-format every source file
 
