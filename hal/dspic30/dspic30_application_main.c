@@ -8,7 +8,6 @@
 #include "drivers/epuck/epuck_devices.h"
 #include "drivers/epuck/epuck_selector.h"
 #include "dspic30_board.h"
-#include "dspic30_registers.h"
 #include "firmware/epuck_firmware.h"
 
 static hal_board board;
@@ -17,12 +16,7 @@ static epuck_firmware firmware;
 
 int main(void)
 {
-    // Some robots need a second reset after power-on (§1.8, as both Aseba
-    // versions do).
-    if (dspic30_read(DSPIC30_RCON) & DSPIC30_RCON_POR) {
-        dspic30_clear_bits(DSPIC30_RCON, DSPIC30_RCON_POR);
-        hal_reset(&board);
-    }
+    dspic30_reset_again_after_power_on(&board);
     dspic30_board_init(&board);
     // The node id the bootloader answered as: the stored settings' or the
     // selector's.

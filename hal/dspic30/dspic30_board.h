@@ -14,6 +14,7 @@
 #include "drivers/epuck/epuck_board.h"
 #include "dspic30_config.h"
 #include "hal/hal.h"
+#include "hal/hal_link_rings.h"
 
 typedef struct dspic30_timer_slot {
     epuck_callback callback;
@@ -32,19 +33,9 @@ struct hal_board {
     volatile uint32_t milliseconds;
     uint16_t tick_remainder;
 
-    // Bytes received on UART1, written by the receive interrupt, read by
-    // hal_link_receive.
-    uint8_t receive[HAL_LINK_RECEIVE_CAPACITY];
-    volatile uint16_t receive_head;     // next byte to write (interrupt side)
-    volatile uint16_t receive_tail;     // next byte to read (main-loop side)
-    volatile uint16_t receive_overruns; // bytes lost to a full ring or FIFO
-
-    // Bytes to send on UART1, written by hal_link_send, moved into the
-    // transmit FIFO by the transmit interrupt. One slot stays free, so that
-    // head == tail means empty.
-    uint8_t transmit[HAL_LINK_TRANSMIT_CAPACITY + 1u];
-    volatile uint16_t transmit_head; // next byte to write (main-loop side)
-    volatile uint16_t transmit_tail; // next byte to send (interrupt side)
+    // UART1's rings: received bytes from its receive interrupt, bytes to
+    // send to its transmit interrupt.
+    hal_link_rings link;
 
     dspic30_timer_slot timers[EPUCK_TIMER_COUNT];
 
@@ -63,6 +54,10 @@ struct hal_board {
     uint16_t camera_count;
     uint32_t camera_started_ms;
 };
+
+// Resets the chip once more when it has just been powered on; the first
+// thing each image's entry point does.
+void dspic30_reset_again_after_power_on(hal_board *board);
 
 // Prepares every peripheral of the e-puck (clock, ports, UART1, timers,
 // ADC, I2C) and the board's state; interrupts run from then on.

@@ -59,12 +59,7 @@ static void start_application(uint32_t entry)
 
 int main(void)
 {
-    // Some robots need a second reset after power-on (§1.8, as both Aseba
-    // versions do).
-    if (dspic30_read(DSPIC30_RCON) & DSPIC30_RCON_POR) {
-        dspic30_clear_bits(DSPIC30_RCON, DSPIC30_RCON_POR);
-        hal_reset(&board);
-    }
+    dspic30_reset_again_after_power_on(&board);
     start_board();
     boot_start(&loader, &board, epuck_store_node_id(&board, epuck_selector_read(&board)));
     while (boot_poll(&loader) != BOOT_START_APPLICATION)

@@ -35,13 +35,15 @@ DSPIC30_TARGET_CONFIG := '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"'
 DSPIC30_APPLICATION_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c \
                                             hal/dspic30/dspic30_bootloader_main.c, \
                      $(sort $(wildcard vm/*.c native_functions/*.c firmware/*.c hal/dspic30/*.c \
-                                       drivers/epuck/*.c) bootloader/bytecode_store.c))
+                                       drivers/epuck/*.c) bootloader/bytecode_store.c \
+                            hal/hal_link_rings.c))
 # The bootloader image: what dspic30_bootloader_main.c reaches. Unused
 # functions are dropped at link time (-ffunction-sections, --gc-sections).
 DSPIC30_BOOTLOADER_SOURCES := $(sort $(wildcard bootloader/*.c) hal/dspic30/dspic30_bootloader_main.c \
                                 hal/dspic30/dspic30_clock.c hal/dspic30/dspic30_gpio.c \
                                 hal/dspic30/dspic30_uart.c hal/dspic30/dspic30_nvm.c \
-                                drivers/epuck/epuck_selector.c vm/node_description.c)
+                                hal/hal_link_rings.c drivers/epuck/epuck_selector.c \
+                                vm/node_description.c)
 DSPIC30_APPLICATION_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_APPLICATION_SOURCES))
 DSPIC30_BOOTLOADER_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_BOOTLOADER_SOURCES))
 DSPIC30_APPLICATION_SCRIPT := linker/epuck-app.gld
@@ -98,7 +100,8 @@ $(DSPIC30_OUT)/epuck-aseba.hex $(DSPIC30_OUT)/epuck-aseba-factory.hex &: \
 # Every hal/dspic30 file compiled where int is 16 bits, warnings as errors;
 # the DSP kernel needs XC16's DSP builtins (its host test runs it against a
 # model of them).
-DSPIC30_CHECK_SOURCES := $(filter-out hal/dspic30/dspic30_dsp_kernel.c,$(wildcard hal/dspic30/*.c))
+DSPIC30_CHECK_SOURCES := $(filter-out hal/dspic30/dspic30_dsp_kernel.c,$(wildcard hal/dspic30/*.c)) \
+                         hal/hal_link_rings.c
 DSPIC30_CHECK_FLAGS := -std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef \
                        -Wpointer-arith -mmcu=atmega1284p -I. -Ivm -Inative_functions \
                        -DDSPIC30_SIMULATED_REGISTERS $(DSPIC30_TARGET_CONFIG)
@@ -108,6 +111,6 @@ dspic30-check: | $(DEPS_STAMP)
 	    avr-gcc $(DSPIC30_CHECK_FLAGS) -c $$source \
 	        -o $(BUILD)/cross-dspic30/$$(basename $${source%.c}).o || exit 1; \
 	done
-	@echo "== hal/dspic30: $(words $(DSPIC30_CHECK_SOURCES)) files build with avr-gcc against the simulated registers"
+	@echo "== hal/dspic30 and its rings: $(words $(DSPIC30_CHECK_SOURCES)) files build with avr-gcc against the simulated registers"
 
 cross-check: dspic30-check

@@ -23,7 +23,8 @@ STM32F4_TARGET_CONFIG := '-DTARGET_CONFIG="$(STM32F4_CONFIG_$(STM32F4_BOARD))"'
 # real chip's flash driver (stm32f4_flash.c) is for boards that can write
 # their flash.
 STM32F4_PORT_SOURCES := hal/stm32f4/stm32f4_startup.c hal/stm32f4/stm32f4_clock.c \
-                        hal/stm32f4/stm32f4_usart.c hal/stm32f4/stm32f4_application_main.c
+                        hal/stm32f4/stm32f4_usart.c hal/stm32f4/stm32f4_application_main.c \
+                        hal/hal_link_rings.c
 STM32F4_FIRMWARE_SOURCES := $(sort $(wildcard vm/*.c native_functions/*.c firmware/*.c) \
                                    bootloader/bytecode_store.c)
 STM32F4_SOURCES := $(STM32F4_FIRMWARE_SOURCES) $(STM32F4_PORT_SOURCES) \

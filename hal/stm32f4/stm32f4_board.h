@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "hal/hal.h"
+#include "hal/hal_link_rings.h"
 
 #ifdef STM32F4_RAM_FLASH_BASE
 // The flash of a board that cannot write its own (stm32f4_ram_flash.c), in
@@ -27,19 +28,9 @@ struct hal_board {
     // Milliseconds since start-up, counted by SysTick's interrupt.
     volatile uint32_t milliseconds;
 
-    // Bytes received on USART1, written by its interrupt, read by
-    // hal_link_receive.
-    uint8_t receive[HAL_LINK_RECEIVE_CAPACITY];
-    volatile uint16_t receive_head; // next byte to write (interrupt side)
-    volatile uint16_t receive_tail; // next byte to read (main-loop side)
-    volatile uint16_t receive_overruns;
-
-    // Bytes to send on USART1, written by hal_link_send, sent from the
-    // transmit-empty interrupt or by polling (STM32F4_TRANSMIT_BY_INTERRUPT).
-    // One slot stays free, so that head == tail means empty.
-    uint8_t transmit[HAL_LINK_TRANSMIT_CAPACITY + 1u];
-    volatile uint16_t transmit_head; // next byte to write (main-loop side)
-    volatile uint16_t transmit_tail; // next byte to send
+    // USART1's rings: received bytes from its interrupt, bytes to send to
+    // its transmit-empty interrupt or by polling (STM32F4_TRANSMIT_BY_INTERRUPT).
+    hal_link_rings link;
 
 #ifdef STM32F4_RAM_FLASH_BASE
     stm32f4_ram_flash *ram_flash; // set by the entry point before stm32f4_board_init

@@ -108,7 +108,7 @@ void hal_critical_leave(hal_board *board, hal_critical_state state)
 void hal_reset(hal_board *board)
 {
     // A REBOOT's last answers leave first.
-    while (board->transmit_head != board->transmit_tail)
+    while (hal_link_rings_sending(&board->link))
         stm32f4_usart_drain(board);
     stm32f4_data_barrier();
     stm32f4_write(STM32F4_SCB_AIRCR, STM32F4_AIRCR_RESET);
@@ -121,6 +121,6 @@ void hal_idle(hal_board *board)
     // Polled transmission has no interrupt to wake the core: only sleep
     // when nothing waits to be sent.
     stm32f4_usart_drain(board);
-    if (STM32F4_TRANSMIT_BY_INTERRUPT || board->transmit_head == board->transmit_tail)
+    if (STM32F4_TRANSMIT_BY_INTERRUPT || !hal_link_rings_sending(&board->link))
         stm32f4_wait_for_interrupt();
 }

@@ -19,19 +19,9 @@ typedef char
 #define PA9_PA10_AF_MASK       (0xFul << 4 | 0xFul << 8)
 #define STM32F4_RESET_CLOCK_HZ 16000000ul // the internal oscillator (RM0090 §6.2.2)
 
-static uint16_t next_transmit_slot(uint16_t index)
-{
-    index++;
-    return index == TRANSMIT_SLOTS ? 0 : index;
-}
-
 void stm32f4_usart_init(hal_board *board)
 {
-    board->receive_head = 0;
-    board->receive_tail = 0;
-    board->receive_overruns = 0;
-    board->transmit_head = 0;
-    board->transmit_tail = 0;
+    hal_link_rings_init(&board->link);
 
     stm32f4_set_bits(STM32F4_RCC_AHB1ENR, STM32F4_AHB1ENR_GPIOAEN);
     stm32f4_set_bits(STM32F4_RCC_APB2ENR, STM32F4_APB2ENR_USART1EN);
@@ -56,19 +46,16 @@ void stm32f4_usart_init(hal_board *board)
 // Runs with the USART's interrupt held off.
 static void fill_data_register(hal_board *board)
 {
-    uint16_t tail = board->transmit_tail;
+    uint8_t byte;
 
-    while (tail != board->transmit_head &&
-           (stm32f4_read(STM32F4_USART1_SR) & STM32F4_USART_SR_TXE) != 0) {
-        stm32f4_write(STM32F4_USART1_DR, board->transmit[tail]);
-        tail = next_transmit_slot(tail);
-    }
-    board->transmit_tail = tail;
+    while ((stm32f4_read(STM32F4_USART1_SR) & STM32F4_USART_SR_TXE) != 0 &&
+           hal_link_rings_next_to_send(&board->link, &byte))
+        stm32f4_write(STM32F4_USART1_DR, byte);
     if (STM32F4_TRANSMIT_BY_INTERRUPT) {
-        if (tail == board->transmit_head)
-            stm32f4_clear_bits(STM32F4_USART1_CR1, STM32F4_USART_CR1_TXEIE);
-        else
+        if (hal_link_rings_sending(&board->link))
             stm32f4_set_bits(STM32F4_USART1_CR1, STM32F4_USART_CR1_TXEIE);
+        else
+            stm32f4_clear_bits(STM32F4_USART1_CR1, STM32F4_USART_CR1_TXEIE);
     }
 }
 
@@ -86,15 +73,9 @@ void stm32f4_on_usart1(hal_board *board)
     // Reading SR then DR clears RXNE and an overrun (RM0090 §30.6.1).
     while (status & (STM32F4_USART_SR_RXNE | STM32F4_USART_SR_ORE)) {
         uint8_t byte = (uint8_t)stm32f4_read(STM32F4_USART1_DR);
-        uint16_t next = (uint16_t)((board->receive_head + 1u) & RECEIVE_MASK);
         if (status & STM32F4_USART_SR_ORE)
-            board->receive_overruns++;
-        if (next == board->receive_tail) {
-            board->receive_overruns++;
-        } else {
-            board->receive[board->receive_head] = byte;
-            board->receive_head = next;
-        }
+            board->link.receive_overruns++;
+        hal_link_rings_received(&board->link, byte);
         status = stm32f4_read(STM32F4_USART1_SR);
     }
     if (STM32F4_TRANSMIT_BY_INTERRUPT)
@@ -103,42 +84,17 @@ void stm32f4_on_usart1(hal_board *board)
 
 uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
 {
-    uint16_t count = 0;
-    uint16_t tail = board->receive_tail;
-
-    // Only this side moves the tail; the interrupt only moves the head.
-    while (count < capacity && tail != board->receive_head) {
-        bytes[count++] = board->receive[tail];
-        tail = (uint16_t)((tail + 1u) & RECEIVE_MASK);
-    }
-    board->receive_tail = tail;
-    return count;
+    return hal_link_rings_take(&board->link, bytes, capacity);
 }
 
 uint16_t hal_link_send_room(hal_board *board)
 {
-    uint16_t head = board->transmit_head;
-    uint16_t tail = board->transmit_tail;
-    uint16_t used =
-      head >= tail ? (uint16_t)(head - tail) : (uint16_t)(TRANSMIT_SLOTS - tail + head);
-
-    return (uint16_t)(HAL_LINK_TRANSMIT_CAPACITY - used);
+    return hal_link_rings_room(&board->link);
 }
 
 uint16_t hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)
 {
-    uint16_t room = hal_link_send_room(board);
-    uint16_t head = board->transmit_head;
-    uint16_t i;
-
-    if (count > room)
-        count = room;
-    // Only this side moves the head; the sending side only moves the tail.
-    for (i = 0; i < count; i++) {
-        board->transmit[head] = bytes[i];
-        head = next_transmit_slot(head);
-    }
-    board->transmit_head = head;
+    count = hal_link_rings_queue(&board->link, bytes, count);
     stm32f4_usart_drain(board);
     return count;
 }

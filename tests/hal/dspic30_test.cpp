@@ -151,7 +151,7 @@ TEST_F(Dspic30, Uart1RunsAt115200EightNOneWithReceiveInterrupt)
     auto modes = writes_to(U1MODE);
     ASSERT_FALSE(modes.empty());
     EXPECT_EQ(modes.back(), 0x8000);
-    EXPECT_EQ(status & 0x8000, 0x8000); // UTXISEL: when the buffer empties, as the library
+    EXPECT_EQ(status & 0x8000, 0x8000);    // UTXISEL: when the buffer empties, as the library
     EXPECT_NE(chip.sfr(IEC0) & 0x0200, 0); // U1RXIE
     EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0); // U1TXIE: only while bytes wait
     // §2.1: the library runs both UART1 interrupts at priority 5.
@@ -190,7 +190,7 @@ TEST_F(Dspic30, RingDropsBytesWhenFullInsteadOfOverwriting)
     ASSERT_GE(count, 522);
     for (uint16_t i = 0; i < count; i++)
         ASSERT_EQ(received[i], uint8_t(i));
-    EXPECT_EQ(board.receive_overruns, 1100 - count);
+    EXPECT_EQ(board.link.receive_overruns, 1100 - count);
 }
 
 TEST_F(Dspic30, OverrunIsCleared)
@@ -228,9 +228,9 @@ TEST_F(Dspic30, LinkSendQueuesAndTheTransmitInterruptDrains)
     std::vector<uint8_t> expected(bytes.begin(), bytes.begin() + taken);
     expected.insert(expected.end(), bytes.begin(), bytes.begin() + 4);
     EXPECT_EQ(chip.uart_sent, expected);
-    EXPECT_EQ(chip.uart_lost, 0);                    // never written while full
+    EXPECT_EQ(chip.uart_lost, 0);                              // never written while full
     EXPECT_EQ(interrupts, (int(expected.size()) + 3) / 4 - 1); // one per 4 bytes after the first
-    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0);           // nothing left: U1TXIE off
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0);                     // nothing left: U1TXIE off
     EXPECT_EQ(hal_link_send_room(&board), HAL_LINK_TRANSMIT_CAPACITY);
 }
 
@@ -390,6 +390,22 @@ TEST_F(Dspic30, PortsFollowThePinMap)
     for (int bit = 0; bit < 4; bit++)
         selector |= epuck_board_pin_read(&board, epuck_pin(EPUCK_PIN_SELECTOR_0 + bit)) << bit;
     EXPECT_EQ(selector, 0b1010);
+}
+
+// A camera row is read in steps: while no frame begins, a step returns
+// after its polls, and the read fails once no frame came for half a second.
+TEST_F(Dspic30, CameraStepsNeverWaitForAFrame)
+{
+    constexpr uint16_t PORTC = TRISC + 2;
+    chip.sfr(PORTC) = 0; // VSYNC (RC4, §3.5) inactive: no frame begins
+    uint8_t bytes[4] = {};
+    epuck_board_camera_start(&board, 10, bytes, sizeof bytes);
+    for (int step = 0; step < 5; step++)
+        EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
+    for (int tick = 0; tick < 520; tick++) // Timer1 ticks of 1/1024 s: 508 ms
+        dspic30_on_clock_tick(&board);
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED);
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED); // until started again
 }
 
 TEST_F(Dspic30, RemoteEdgesComeFromInt0)

@@ -260,10 +260,10 @@ TEST_F(HostBoard, FlashRowsAreErasedAndProgrammedWhole)
         EXPECT_EQ(hal_flash_read(board.get(), row + 2 * i), 0xFFFFFFu);
     EXPECT_FALSE(hal_flash_erase(board.get(), row + 0x20));
     EXPECT_FALSE(hal_flash_program(board.get(), 0x018000, first.data(), 32));
-    EXPECT_FALSE(hal_flash_program(board.get(), row, first.data(), 31));        // not a whole row
+    EXPECT_FALSE(hal_flash_program(board.get(), row, first.data(), 31)); // not a whole row
     std::vector<uint32_t> two_rows(64, 0);
     EXPECT_FALSE(hal_flash_program(board.get(), 0x017FC0, two_rows.data(), 64)); // past the end
-    EXPECT_EQ(hal_flash_read(board.get(), row + 1), 0u);                        // odd address
+    EXPECT_EQ(hal_flash_read(board.get(), row + 1), 0u);                         // odd address
 }
 
 TEST_F(HostBoard, PowerCutTearsTheInterruptedOperationAndStopsTheRest)

@@ -8,7 +8,7 @@ HAL_TEST_GTEST_LDLIBS := -lgtest -lgtest_main -pthread
 # configuration and the simulated register mapping; the application's entry
 # point is renamed so that it does not clash with GoogleTest's.
 HAL_DSPIC30_SOURCES := $(filter-out hal/dspic30/dspic30_dsp_kernel.c hal/dspic30/dspic30_bootloader_main.c,\
-                         $(wildcard hal/dspic30/*.c))
+                         $(wildcard hal/dspic30/*.c)) hal/hal_link_rings.c
 $(foreach s,$(HAL_DSPIC30_SOURCES),\
   $(eval EXTRA_CFLAGS_$(basename $(s)) += -DDSPIC30_SIMULATED_REGISTERS -UTARGET_CONFIG \
                                           '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"'))

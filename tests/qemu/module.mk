@@ -17,7 +17,7 @@
 STM32F4_HARNESS := $(STM32F4_OUT)/aseba-harness-stm32f4
 STM32F4_HARNESS_SOURCES := $(sort $(wildcard vm/*.c native_functions/*.c tests/qemu/target/*.c)) \
                            hal/stm32f4/stm32f4_startup.c hal/stm32f4/stm32f4_clock.c \
-                           hal/stm32f4/stm32f4_usart.c
+                           hal/stm32f4/stm32f4_usart.c hal/hal_link_rings.c
 STM32F4_HARNESS_OBJECTS := $(patsubst %.c,$(STM32F4_OUT)/obj/%.o,$(STM32F4_HARNESS_SOURCES))
 
 $(STM32F4_HARNESS).elf: $(STM32F4_HARNESS_OBJECTS) $(STM32F4_SCRIPT)
@@ -27,7 +27,9 @@ $(STM32F4_HARNESS).elf: $(STM32F4_HARNESS_OBJECTS) $(STM32F4_SCRIPT)
 -include $(STM32F4_HARNESS_OBJECTS:.o=.d)
 
 QEMU_TEST_LDLIBS := -lgtest -lgtest_main -pthread
-QEMU_REMOTE_SOURCES := tests/qemu/remote_link.cpp tests/qemu/qemu_machine.cpp
+QEMU_MACHINE_SOURCES := tests/qemu/qemu_machine.cpp tests/interop/child_process.cpp \
+                        tests/interop/interop_support.cpp
+QEMU_REMOTE_SOURCES := tests/qemu/remote_link.cpp $(QEMU_MACHINE_SOURCES)
 EXTRA_CFLAGS_tests/qemu/remote_link := '-DQEMU_HARNESS_IMAGE="$(STM32F4_HARNESS).elf"'
 
 TESTS += qemu_vm_programs_test
@@ -45,7 +47,7 @@ qemu_node_traces_test_LIBS := aseba_natives
 qemu_node_traces_test_LDLIBS := -lasebacommon $(QEMU_TEST_LDLIBS)
 
 TESTS += qemu_node_test
-qemu_node_test_SOURCES := tests/qemu/node_test.cpp tests/qemu/qemu_machine.cpp
+qemu_node_test_SOURCES := tests/qemu/node_test.cpp $(QEMU_MACHINE_SOURCES)
 qemu_node_test_LDLIBS := $(QEMU_TEST_LDLIBS)
 EXTRA_CFLAGS_tests/qemu/node_test := '-DQEMU_NODE_IMAGE="$(STM32F4_IMAGE).elf"' \
     '-DASEBA_CONSOLE="$(BUILD)/host-sanitize/bin/aseba"'

@@ -6,21 +6,17 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
-#include <cerrno>
 #include <chrono>
-#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <poll.h>
 #include <string>
-#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
 
+#include "tests/interop/interop_support.hpp"
 #include "tests/qemu/qemu_machine.hpp"
 
 namespace
@@ -28,89 +24,40 @@ namespace
 
 using qemu_test::QemuMachine;
 
-constexpr int command_timeout_ms = 30000;
+constexpr interop::Milliseconds command_timeout{ 30000 };
 
 struct Outcome {
-    int status = -1;    // exit status, -1 when killed or not started
+    int status = -1;    // exit status, -1 when killed or out of time
     std::string output; // stdout and stderr
 };
-
-// Runs `arguments` with `environment` added, within command_timeout_ms.
-Outcome run_command(const std::vector<std::string> &arguments,
-                    const std::vector<std::string> &environment = {})
-{
-    int pipe_ends[2];
-    if (::pipe(pipe_ends) != 0)
-        return {};
-    pid_t pid = ::fork();
-    if (pid == 0) {
-        ::dup2(pipe_ends[1], STDOUT_FILENO);
-        ::dup2(pipe_ends[1], STDERR_FILENO);
-        ::close(pipe_ends[0]);
-        ::close(pipe_ends[1]);
-        for (const std::string &variable : environment)
-            ::putenv(const_cast<char *>(variable.c_str()));
-        std::vector<char *> argv;
-        for (const std::string &argument : arguments)
-            argv.push_back(const_cast<char *>(argument.c_str()));
-        argv.push_back(nullptr);
-        ::execvp(argv[0], argv.data());
-        ::_exit(127);
-    }
-    ::close(pipe_ends[1]);
-    Outcome result;
-    auto deadline =
-      std::chrono::steady_clock::now() + std::chrono::milliseconds(command_timeout_ms);
-    for (;;) {
-        auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-          deadline - std::chrono::steady_clock::now());
-        pollfd reading{ pipe_ends[0], POLLIN, 0 };
-        if (left.count() <= 0 || ::poll(&reading, 1, int(left.count())) <= 0) {
-            ::kill(pid, SIGKILL);
-            result.output += "\n(killed after " + std::to_string(command_timeout_ms) + " ms)";
-            break;
-        }
-        char buffer[4096];
-        ssize_t got = ::read(pipe_ends[0], buffer, sizeof buffer);
-        if (got < 0 && errno == EINTR)
-            continue;
-        if (got <= 0)
-            break;
-        result.output.append(buffer, size_t(got));
-    }
-    ::close(pipe_ends[0]);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    if (WIFEXITED(status))
-        result.status = WEXITSTATUS(status);
-    return result;
-}
 
 class QemuNode : public ::testing::Test
 {
   protected:
     void SetUp() override
     {
-        folder = std::filesystem::temp_directory_path() /
-                 ("qemu_node_test_" + std::to_string(::getpid()) + "_" +
-                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        std::filesystem::create_directories(folder);
+        // The console remembers its last load in this test's folder only;
+        // ASan's leak report is the console tests' business.
+        ::setenv("XDG_STATE_HOME", folder.file("state").c_str(), 1);
+        ::setenv("ASAN_OPTIONS", "detect_leaks=0", 1);
         machine = std::make_unique<QemuMachine>(QEMU_NODE_IMAGE);
         wait_until_the_node_answers();
     }
 
     // The board starts at once: what reaches it before its USART is on is
-    // lost. Asks LIST_NODES (protocol.md §5) until NODE_PRESENT comes back.
+    // lost. Asks LIST_NODES (protocol.md §5) until NODE_PRESENT comes back,
+    // each time after a silence longer than the node's 500 ms inter-byte
+    // time-out, so that a frame cut by the boot is forgotten (vm/node.h).
     void wait_until_the_node_answers()
     {
         const uint8_t list_nodes[] = { 0x02, 0x00, 0x00, 0x00, 0x11, 0xA0, 0x05, 0x00 };
         const uint8_t node_present[] = { 0x02, 0x00, 0x01, 0x00, 0x0C, 0x90, 0x05, 0x00 };
         int socket = machine->connect();
-        for (int attempt = 0; attempt < 50; attempt++) {
+        for (int attempt = 0; attempt < 15; attempt++) {
             qemu_test::write_all(socket, list_nodes, sizeof list_nodes);
             uint8_t answer[sizeof node_present];
             try {
-                qemu_test::read_exactly(socket, answer, sizeof answer, 200);
+                qemu_test::read_exactly(socket, answer, sizeof answer, 700);
             } catch (const std::exception &) {
                 continue; // lost: ask again
             }
@@ -126,22 +73,27 @@ class QemuNode : public ::testing::Test
     void TearDown() override
     {
         machine.reset();
-        std::filesystem::remove_all(folder);
+        std::filesystem::remove_all(folder.file("state")); // the folder takes only files
     }
 
-    // The console on the machine, its last load remembered in this test's
-    // folder only; ASan's leak report is the console tests' business.
+    Outcome run(const std::vector<std::string> &arguments)
+    {
+        interop::ToolRun run = interop::run_tool(folder, "command.log", arguments, command_timeout);
+        return { run.finished_in_time && run.exit_code ? *run.exit_code : -1,
+                 run.output + (run.finished_in_time ? "" : "\n(" + run.how_it_ended + ")") };
+    }
+
+    // The console on the machine.
     Outcome aseba(std::vector<std::string> arguments)
     {
         arguments.insert(arguments.begin(),
                          { ASEBA_CONSOLE, "-t", machine->target(), "--timeout", "3000" });
-        return run_command(arguments,
-                           { "XDG_STATE_HOME=" + folder.string(), "ASAN_OPTIONS=detect_leaks=0" });
+        return run(arguments);
     }
 
     std::string write_file(const std::string &name, const std::string &text)
     {
-        std::string path = (folder / name).string();
+        std::string path = folder.file(name);
         std::ofstream(path) << text;
         return path;
     }
@@ -155,7 +107,7 @@ class QemuNode : public ::testing::Test
                             "</node>\n</network>\n");
     }
 
-    std::filesystem::path folder;
+    interop::ScratchFolder folder;
     std::unique_ptr<QemuMachine> machine;
 };
 
@@ -184,7 +136,7 @@ TEST_F(QemuNode, TheConsoleDiscoversAnEpuck)
 TEST_F(QemuNode, AsebamassloaderLoadsAProgramWhoseVariablesReadBack)
 {
     std::string file = project("var answer = 6 * 7\nvar series[3] = [1, 2, 3]\n");
-    Outcome loader = run_command({ "asebamassloader", "--once", file, machine->target() });
+    Outcome loader = run({ "asebamassloader", "--once", file, machine->target() });
     EXPECT_EQ(loader.status, 0) << loader.output;
     EXPECT_TRUE(has_line(loader, "bytecodes loaded to target e-puck"));
 

@@ -3,15 +3,11 @@
 #include <arpa/inet.h>
 #include <cerrno>
 #include <chrono>
-#include <csignal>
-#include <cstring>
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <stdexcept>
-#include <sys/prctl.h>
 #include <sys/socket.h>
-#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
@@ -23,25 +19,7 @@ namespace
 {
 
 constexpr auto start_limit = std::chrono::seconds(10);
-constexpr auto stop_limit = std::chrono::seconds(3);
 constexpr int start_attempts = 3; // a free port may be taken before QEMU binds it
-
-int free_port()
-{
-    int probe = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    socklen_t length = sizeof address;
-    if (probe < 0 || ::bind(probe, reinterpret_cast<sockaddr *>(&address), length) != 0 ||
-        ::getsockname(probe, reinterpret_cast<sockaddr *>(&address), &length) != 0) {
-        if (probe >= 0)
-            ::close(probe);
-        throw std::runtime_error("no free TCP port on 127.0.0.1");
-    }
-    ::close(probe);
-    return ntohs(address.sin_port);
-}
 
 int try_connect(int port)
 {
@@ -61,52 +39,24 @@ int try_connect(int port)
     return -1;
 }
 
-// Whether the process has ended (and reaps it).
-bool ended(pid_t pid)
-{
-    int status = 0;
-    return ::waitpid(pid, &status, WNOHANG) == pid;
-}
-
-void stop(pid_t pid)
-{
-    ::kill(pid, SIGTERM);
-    auto deadline = std::chrono::steady_clock::now() + stop_limit;
-    while (std::chrono::steady_clock::now() < deadline) {
-        if (ended(pid))
-            return;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-    }
-    ::kill(pid, SIGKILL);
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-}
-
 } // namespace
 
 QemuMachine::QemuMachine(const std::string &image, bool icount, Start start)
 {
+    std::string log = scratch_.file("qemu.log");
     for (int attempt = 0; attempt < start_attempts; attempt++) {
-        port_ = free_port();
-        std::string port = std::to_string(port_);
-        pid_ = ::fork();
-        if (pid_ < 0)
-            throw std::runtime_error("cannot start QEMU: fork failed");
-        if (pid_ == 0) {
-            // QEMU must not outlive a test program that crashes.
-            ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-            std::vector<const char *> arguments = { "qemu-node.sh", "--port", port.c_str() };
-            if (icount)
-                arguments.push_back("--icount");
-            if (start == Start::on_first_connection)
-                arguments.push_back("--wait");
-            arguments.push_back(image.c_str());
-            arguments.push_back(nullptr);
-            ::execv("scripts/qemu-node.sh", const_cast<char *const *>(arguments.data()));
-            ::_exit(127);
-        }
+        port_ = interop::find_free_port();
+        std::vector<std::string> arguments = { "scripts/qemu-node.sh",
+                                               "--port",
+                                               std::to_string(port_) };
+        if (icount)
+            arguments.push_back("--icount");
+        if (start == Start::on_first_connection)
+            arguments.push_back("--wait");
+        arguments.push_back(image);
+        process_ = std::make_unique<interop::ChildProcess>(arguments, log);
         auto deadline = std::chrono::steady_clock::now() + start_limit;
-        while (std::chrono::steady_clock::now() < deadline && !ended(pid_)) {
+        while (std::chrono::steady_clock::now() < deadline && process_->running()) {
             int socket = try_connect(port_);
             if (socket >= 0) {
                 if (start == Start::on_first_connection)
@@ -117,18 +67,16 @@ QemuMachine::QemuMachine(const std::string &image, bool icount, Start start)
             }
             std::this_thread::sleep_for(std::chrono::milliseconds(20));
         }
-        stop(pid_);
-        pid_ = -1;
+        process_->stop();
     }
-    throw std::runtime_error("QEMU did not start " + image + " (scripts/qemu-node.sh)");
+    throw std::runtime_error("QEMU did not start " + image + " (" + process_->command_line() +
+                             "); its messages:\n" + interop::read_file(log));
 }
 
 QemuMachine::~QemuMachine()
 {
-    if (pid_ > 0)
-        stop(pid_);
+    process_->stop();
 }
-
 std::string QemuMachine::target() const
 {
     return "tcp:127.0.0.1;" + std::to_string(port_);

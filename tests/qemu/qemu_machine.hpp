@@ -1,12 +1,15 @@
 // An STM32F4 image running in QEMU for a test: scripts/qemu-node.sh started
-// on a free loopback port, reachable over TCP once the image answers, and
-// stopped by its PID (SIGTERM, then SIGKILL) when the object goes, or when
-// the test program ends.
+// on a free loopback port (tests/interop's child process: stopped by its PID,
+// SIGTERM then SIGKILL, when the object goes, and by the kernel when the
+// test program dies), reachable over TCP once QEMU listens.
 
 #pragma once
 
+#include <memory>
 #include <string>
-#include <sys/types.h>
+
+#include "tests/interop/child_process.hpp"
+#include "tests/interop/interop_support.hpp"
 
 namespace qemu_test
 {
@@ -45,7 +48,8 @@ class QemuMachine
     }
 
   private:
-    pid_t pid_ = -1;
+    interop::ScratchFolder scratch_; // QEMU's messages
+    std::unique_ptr<interop::ChildProcess> process_;
     int port_ = 0;
     int first_connection_ = -1;
 };
