@@ -8,6 +8,7 @@
 #include "drivers/epuck/epuck_devices.h"
 #include "drivers/epuck/epuck_selector.h"
 #include "dspic30_board.h"
+#include "dspic30_registers.h" // DSPIC30_INTERRUPT
 #include "firmware/epuck_firmware.h"
 
 static hal_board board;

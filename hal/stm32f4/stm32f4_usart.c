@@ -1,17 +1,12 @@
 // USART1, the link to the hosts: 8N1 at STM32F4_LINK_BAUD on PA9/PA10.
 // Received bytes go by interrupt into the board's receive ring; bytes to
-// send wait in the transmit ring, moved into the data register as it
-// empties, from the transmit-empty interrupt on a real chip or by polling on
+// send wait in the transmit ring (hal/hal_link_rings.h), moved into the data
+// register as it empties, from the transmit-empty interrupt on a real chip or by polling on
 // QEMU (STM32F4_TRANSMIT_BY_INTERRUPT), so that sending never waits.
 
 #include "stm32f4_board.h"
 #include "stm32f4_registers.h"
 
-#define RECEIVE_MASK (HAL_LINK_RECEIVE_CAPACITY - 1u)
-typedef char
-  receive_capacity_is_a_power_of_two[(HAL_LINK_RECEIVE_CAPACITY & RECEIVE_MASK) == 0 ? 1 : -1];
-
-#define TRANSMIT_SLOTS         (HAL_LINK_TRANSMIT_CAPACITY + 1u)
 #define APB2_HZ                (STM32F4_HSE_HZ != 0 ? STM32F4_CPU_HZ / 2u : STM32F4_RESET_CLOCK_HZ)
 #define PA9_PA10_MODE          (STM32F4_MODER_ALTERNATE << 18 | STM32F4_MODER_ALTERNATE << 20)
 #define PA9_PA10_MODE_MASK     (0x3ul << 18 | 0x3ul << 20)
