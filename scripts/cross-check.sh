@@ -92,7 +92,7 @@ dspic30_image() { # image(application|bootloader) name compiler size-tool flags.
     local upper=${image^^}
     local image_sources
     # shellcheck disable=SC2207 # the list is words
-    image_sources=($(make -s --no-print-directory "sources-DSPIC30_$upper" |
+    image_sources=($(env -u MAKEFLAGS -u MFLAGS make -s --no-print-directory "sources-DSPIC30_$upper" |
                          sed 's|hal/dspic30/dspic30_dsp_kernel.c|native_functions/nat_dsp_kernel.c|'))
     "$compiler" "${flags[@]}" "$@" -DDSPIC30_SIMULATED_REGISTERS -Wl,--gc-sections \
         "${image_sources[@]}" tests/cross/simulated_registers.c "tests/cross/${image}_image.c" \
