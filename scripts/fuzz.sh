@@ -38,7 +38,8 @@ targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
-includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba)
+includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba
+          '-DTARGET_CONFIG="hal/host/host_config.h"')
 
 for target in "${targets[@]}"; do
     [ -n "${sources[$target]:-}" ] || { echo "fuzz: unknown target '$target'" >&2; exit 2; }
