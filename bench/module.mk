@@ -3,18 +3,19 @@
 # to measure the reference in the same run; the reference is only measured.
 BENCH_COMPILER_LIBS := aseba_compiler aseba_natives
 
-# The VM dispatch loop, once per dispatch variant of our VM; the reference VM
-# is linked in both (its symbols are AsebaVM*, ours vm_*).
+# The VM dispatch loop, once per dispatch variant of our VM (bench-vm: as the
+# host tools use it, computed goto; bench-vm-switch: the dsPIC's switch); the
+# reference VM is linked in both (its symbols are AsebaVM*, ours vm_*).
 BENCH_VM_SOURCES := bench/vm_bench.cpp tests/vm/reference_node.cpp
 PROGRAMS += bench-vm
 bench-vm_SOURCES := $(BENCH_VM_SOURCES)
 bench-vm_LIBS := test_support $(BENCH_COMPILER_LIBS) aseba_vm
 bench-vm_LDLIBS := -lasebavm
 
-PROGRAMS += bench-vm-goto
-bench-vm-goto_SOURCES := $(BENCH_VM_SOURCES)
-bench-vm-goto_LIBS := test_support $(BENCH_COMPILER_LIBS) aseba_vm_goto
-bench-vm-goto_LDLIBS := -lasebavm
+PROGRAMS += bench-vm-switch
+bench-vm-switch_SOURCES := $(BENCH_VM_SOURCES)
+bench-vm-switch_LIBS := test_support $(BENCH_COMPILER_LIBS) aseba_vm_switch
+bench-vm-switch_LDLIBS := -lasebavm
 
 # The compiler against the reference compiler on the same inputs.
 PROGRAMS += bench-compiler

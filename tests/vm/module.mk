@@ -1,34 +1,35 @@
 # Tests of the VM (vm/), described in tests/vm/README.md. The programs and
-# debug tests run twice: on the VM as built for the firmware (switch
-# dispatch) and on the computed-goto variant, a second library built from
-# the same source by tests/vm/vm_goto.c.
+# debug tests run twice: on the VM as the host tools use it (computed-goto
+# dispatch) and on the switch variant that the dsPIC build uses, a second
+# library built from the same source by tests/vm/vm_switch.c.
 VM_TEST_GTEST_LDLIBS := -lgtest -lgtest_main -pthread
 
-LIBRARIES += aseba_vm_goto
-aseba_vm_goto_SOURCES := tests/vm/vm_goto.c vm/vm_debug.c
+LIBRARIES += aseba_vm_switch
+aseba_vm_switch_SOURCES := tests/vm/vm_switch.c vm/vm_debug.c vm/vm_verify.c
 
 VM_PROGRAM_TEST_SOURCES := tests/vm/programs_test.cpp tests/vm/program_script.cpp \
-                           tests/vm/operators_test.cpp tests/vm/assembler_test.cpp
+                           tests/vm/operators_test.cpp tests/vm/assembler_test.cpp \
+                           tests/vm/verifier_test.cpp
 
 TESTS += vm_programs_test
 vm_programs_test_SOURCES := $(VM_PROGRAM_TEST_SOURCES)
 vm_programs_test_LIBS := test_support aseba_vm
 vm_programs_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
 
-TESTS += vm_programs_goto_test
-vm_programs_goto_test_SOURCES := $(VM_PROGRAM_TEST_SOURCES)
-vm_programs_goto_test_LIBS := test_support aseba_vm_goto
-vm_programs_goto_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+TESTS += vm_programs_switch_test
+vm_programs_switch_test_SOURCES := $(VM_PROGRAM_TEST_SOURCES)
+vm_programs_switch_test_LIBS := test_support aseba_vm_switch
+vm_programs_switch_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
 
 TESTS += vm_debug_test
 vm_debug_test_SOURCES := tests/vm/debug_test.cpp
 vm_debug_test_LIBS := test_support aseba_vm
 vm_debug_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
 
-TESTS += vm_debug_goto_test
-vm_debug_goto_test_SOURCES := tests/vm/debug_test.cpp
-vm_debug_goto_test_LIBS := test_support aseba_vm_goto
-vm_debug_goto_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+TESTS += vm_debug_switch_test
+vm_debug_switch_test_SOURCES := tests/vm/debug_test.cpp
+vm_debug_switch_test_LIBS := test_support aseba_vm_switch
+vm_debug_switch_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
 
 # Differential tests against Debian's reference VM (package `aseba`,
 # /usr/lib/libasebavm.a), whose headers are not ours: no warnings from them.
