@@ -65,7 +65,7 @@ uint16_t vm_event_address(const vm_state *vm, uint16_t event)
     uint16_t table_size;
     uint16_t i;
 
-    if (vm->memory.bytecode_size == 0 || vm->rejection != NULL)
+    if (vm->memory.bytecode_size == 0)
         return 0;
     table_size = bytecode[0];
     for (i = 1; i < table_size && i + 1 < vm->memory.bytecode_size; i += 2) {
@@ -109,6 +109,12 @@ void vm_error_node_specific(vm_state *vm, const char *message)
 {
     vm->flags = VM_FLAG_STEP_BY_STEP;
     vm->callbacks->node_specific_error(vm->context, vm->pc, message);
+}
+
+void vm_report_rejection(vm_state *vm)
+{
+    vm->pc = vm->rejection_pc;
+    vm_error_node_specific(vm, vm->rejection);
 }
 
 int16_t *vm_variables(vm_state *vm, uint16_t address, uint16_t length)
@@ -230,7 +236,7 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
         VM_DISPATCH();                                                                             \
     else                                                                                           \
         goto budget_spent
-#define VM_OPERATOR_SWITCH(table) goto *table[word & VM_OPERATOR_MASK];
+#define VM_OPERATOR_SWITCH(table)     goto *table[word & VM_OPERATOR_MASK];
 #define VM_OPERATOR_CASE(table, name) table##_##name:
 #define VM_OPERATOR_DEFAULT(table)
 #define VM_OPERATOR_SWITCH_END
@@ -520,14 +526,13 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
         // stack; an event that never called has none.
         if (next == vm->memory.stack)
             goto stack_underflow;
-        ip = bytecode + (uint16_t)*--next;
+        ip = bytecode + (uint16_t) * --next;
         VM_NEXT();
     }
 
 #if !VM_USE_COMPUTED_GOTO
-    // Every opcode has a case, so the switch needs no range check.
-    case VM_OP_INVALID:
-        goto unknown_bytecode;
+// Every opcode has a case, so the switch needs no range check.
+case VM_OP_INVALID: goto unknown_bytecode;
 #endif
 
     VM_LOOP_END
@@ -601,7 +606,11 @@ bool vm_run(vm_state *vm, uint16_t step_budget)
 {
     enum run_outcome outcome;
 
-    if (!(vm->flags & VM_FLAG_EVENT_ACTIVE) || (vm->flags & VM_FLAG_STEP_BY_STEP))
+    // A refused program never leaves STEP_BY_STEP (vm_command_run); the
+    // rejection is checked again here, once per call, for callers that set
+    // the flags themselves.
+    if (!(vm->flags & VM_FLAG_EVENT_ACTIVE) || (vm->flags & VM_FLAG_STEP_BY_STEP) ||
+        vm->rejection != NULL)
         return false;
     vm->flags |= VM_FLAG_EVENT_RUNNING;
     if (vm->breakpoint_count != 0)
@@ -619,6 +628,10 @@ bool vm_step(vm_state *vm)
 {
     if (!(vm->flags & VM_FLAG_EVENT_ACTIVE))
         return false;
+    if (vm->rejection != NULL) {
+        vm_report_rejection(vm);
+        return true;
+    }
     execute(vm, 1, false);
     return true;
 }

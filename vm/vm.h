@@ -101,7 +101,8 @@ struct vm_state {
     const vm_callbacks *callbacks;
     void *context;
     // The verifier's verdict on the bytecode (vm_reset): NULL when it may
-    // run, else why not (reported at rejection_pc when a host sends RUN).
+    // run, else why not (reported at rejection_pc when a host sends RUN or
+    // STEP).
     const char *rejection;
     uint16_t rejection_pc;
 };
@@ -116,8 +117,7 @@ void vm_init(vm_state *vm,
              const vm_callbacks *callbacks,
              void *context);
 
-// Address of the handler of `event`, or 0 when the bytecode does not handle
-// it or was rejected by the verifier.
+// Address of the handler of `event`, or 0 when the bytecode does not handle it.
 uint16_t vm_event_address(const vm_state *vm, uint16_t event);
 
 // Starts the handler of `event` (killing, and reporting, an active one).
@@ -150,8 +150,10 @@ static inline bool vm_is_event_active(const vm_state *vm)
 
 // The debug commands of bytecode.md §6.4, each with its protocol answer.
 // vm_reset (and so vm_set_bytecode) verifies the bytecode and clears the
-// was-true bit of its conditional branches (`when` starts false); RUN of a
-// rejected program reports why, at the faulty instruction, and stops.
+// was-true bit of its conditional branches (`when` starts false). Events are
+// set up and answered as upstream does whatever the verdict (a program
+// arrives in chunks, the first ones incomplete), but a refused program never
+// runs: RUN or STEP reports why, at the faulty instruction, and stops.
 void vm_set_bytecode(vm_state *vm, uint16_t start, const uint16_t *words, uint16_t count);
 void vm_reset(vm_state *vm);
 void vm_command_run(vm_state *vm);

@@ -37,10 +37,8 @@ void vm_set_bytecode(vm_state *vm, uint16_t start, const uint16_t *words, uint16
 
 void vm_command_run(vm_state *vm)
 {
-    // A rejected program cannot run: say why, where, as a run-time error.
     if (vm->rejection != NULL) {
-        vm->pc = vm->rejection_pc;
-        vm_error_node_specific(vm, vm->rejection);
+        vm_report_rejection(vm);
     } else {
         vm->flags &= (uint16_t)~VM_FLAG_STEP_BY_STEP;
     }

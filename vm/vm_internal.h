@@ -19,6 +19,10 @@ extern const char vm_error_unknown_native[];
 extern const char vm_error_event_too_large[];
 extern const char vm_error_invalid_jump[];
 
+// For RUN and STEP of a program the verifier refused: reports why, at the
+// faulty instruction, as a run-time error (which stops the VM).
+void vm_report_rejection(vm_state *vm);
+
 // Verifies the bytecode (vm_verify.c) and clears the was-true bit of every
 // conditional branch it reaches. Sets vm->rejection to NULL when the program
 // is safe to run without the checks the verifier made, else to the text of

@@ -105,7 +105,7 @@ enum vm_unary_operator {
 static inline uint16_t vm_instruction_words(uint16_t word)
 {
     switch (word >> VM_OPCODE_SHIFT) {
-#define VM_OPCODE_WORDS(name, code, words, stack, meaning)                                        \
+#define VM_OPCODE_WORDS(name, code, words, stack, meaning)                                         \
     case code: return words;
         VM_OPCODE_LIST(VM_OPCODE_WORDS)
 #undef VM_OPCODE_WORDS

@@ -44,8 +44,8 @@ typedef struct instruction {
     uint16_t length; // words
     uint16_t pops;   // stack words it needs
     uint16_t pushes;
-    bool goes_on;  // whether the next instruction may follow it
-    bool jumps;    // JUMP, CONDITIONAL_BRANCH or SUB_CALL: `target` is set
+    bool goes_on;           // whether the next instruction may follow it
+    bool jumps;             // JUMP, CONDITIONAL_BRANCH or SUB_CALL: `target` is set
     bool needs_empty_stack; // the stack must be empty after its pops
     uint16_t target;
 } instruction;
@@ -99,8 +99,7 @@ static instruction decode(const verifier *v, uint16_t pc)
         ins.jumps = true;
     } else if (ins.opcode == VM_OP_SUB_RET) {
         ins.needs_empty_stack = true;
-    } else if (ins.opcode == VM_OP_NATIVE_CALL &&
-               (word & VM_OPERAND_MASK) < v->vm->natives.count) {
+    } else if (ins.opcode == VM_OP_NATIVE_CALL && (word & VM_OPERAND_MASK) < v->vm->natives.count) {
         ins.pops = v->vm->natives.natives[word & VM_OPERAND_MASK]->stack_words;
     }
     return ins;
@@ -296,9 +295,7 @@ void vm_verify(vm_state *vm)
     v.anchor_count = vm->memory.stack_size;
     // Every word below `size` has an anchor: count * spacing >= size.
     v.anchor_spacing =
-      v.anchor_count > 0
-        ? (uint16_t)(((uint32_t)v.size + v.anchor_count - 1) / v.anchor_count)
-        : 0;
+      v.anchor_count > 0 ? (uint16_t)(((uint32_t)v.size + v.anchor_count - 1) / v.anchor_count) : 0;
     if (walk_code(&v, reach))
         check_targets(&v, table_size);
 }

@@ -76,8 +76,11 @@ std::unique_ptr<VmHarness> clone(VmHarness &original)
 // checks them (vm/vm.c).
 bool is_verifier_fault(const std::string &text)
 {
-    for (const char *fault : { "out of bytecode bounds", "unknown bytecode", "unknown operator",
-                               "unknown native function", "emitted event too large",
+    for (const char *fault : { "out of bytecode bounds",
+                               "unknown bytecode",
+                               "unknown operator",
+                               "unknown native function",
+                               "emitted event too large",
                                "invalid jump" })
         if (text == fault)
             return true;
@@ -163,10 +166,11 @@ std::string FuzzRun::check(const std::string &command, size_t log_from, bool aft
         }
         if (message.kind == VmMessage::NODE_ERROR && message.text.size() > VM_NODE_ERROR_LENGTH)
             problem << "node error text too long";
-        // Faults the verifier rules out are reported only by RUN, for a
-        // program it refused: a run that meets one ran unverified code.
-        if (message.kind == VmMessage::NODE_ERROR && command != "RUN" &&
-            is_verifier_fault(message.text))
+        // Faults the verifier rules out are reported only for a program it
+        // refused (by RUN and STEP): a run that meets one ran unverified code.
+        if (message.kind == VmMessage::NODE_ERROR && is_verifier_fault(message.text) &&
+            (vm.rejection == nullptr || message.text != vm.rejection ||
+             message.pc != vm.rejection_pc))
             problem << "a run reported what the verifier rules out: " << describe(message);
     }
     if (problem.str().empty() && stopped_by_error && after_run && vm.flags != VM_FLAG_STEP_BY_STEP)

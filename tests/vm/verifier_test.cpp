@@ -348,6 +348,28 @@ TEST(Verifier, GivesTheSameVerdictsWhateverTheStackSize)
     }
 }
 
+// A program arrives in chunks, the first ones incomplete: uploads are
+// answered as upstream answers them, whatever the verdict, and a refused
+// program reports its fault when asked to run or to step, never running.
+TEST(Verifier, AnswersUploadsAsUpstreamAndRefusesToRunOrStep)
+{
+    VmHarness harness;
+    harness.load({}); // an empty node
+    const auto words = test_support::assemble(init("LOAD 40\nSTORE 41\nLOAD 99\nSTOP\n")).words;
+    vm_set_bytecode(&harness.vm, 0, words.data(), static_cast<uint16_t>(words.size()));
+    ASSERT_EQ(harness.log.size(), 1u);
+    EXPECT_EQ(describe(harness.log[0]), "state pc=3 flags=3") << "init prepared, paused";
+    EXPECT_STREQ(harness.vm.rejection, variables_bounds);
+
+    harness.log.clear();
+    vm_command_step(&harness.vm);
+    ASSERT_EQ(harness.log.size(), 2u);
+    EXPECT_EQ(describe(harness.log[0]), "error node_specific pc=5 \"out of variables bounds\"");
+    EXPECT_EQ(describe(harness.log[1]), "state pc=5 flags=2");
+    EXPECT_EQ(harness.variables()[41], 0) << "nothing ran";
+    EXPECT_FALSE(vm_run(&harness.vm, 0));
+}
+
 // The first reset of a program clears the was-true bits of the branches it
 // reaches (bytecode.md §5.1), and only of them.
 TEST(Verifier, ClearsTheWasTrueBitsOfTheCode)
