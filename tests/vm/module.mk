@@ -45,3 +45,15 @@ TESTS += vm_fuzz_test
 vm_fuzz_test_SOURCES := tests/vm/fuzz_test.cpp tests/vm/fuzz_driver.cpp tests/vm/random_program.cpp
 vm_fuzz_test_LIBS := test_support aseba_vm
 vm_fuzz_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+
+# The verifier on every program a compiler produces: ours and the reference
+# (Debian's libasebacompiler, as in tests/compiler), on the upstream corpus,
+# the compiler tests' programs, the examples and generated programs.
+TESTS += vm_verifier_compiled_test
+vm_verifier_compiled_test_SOURCES := tests/vm/verifier_compiled_test.cpp \
+                                     tests/compiler/program_generator.cpp \
+                                     tests/compiler/test_targets.cpp tests/compiler/corpus.cpp \
+                                     tests/compiler/reference_oracle.cpp \
+                                     tests/compiler/reference_containment.cpp
+vm_verifier_compiled_test_LIBS := aseba_compiler aseba_natives aseba_vm
+vm_verifier_compiled_test_LDLIBS := -lasebacompiler -lasebacommon $(VM_TEST_GTEST_LDLIBS)
