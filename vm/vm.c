@@ -267,12 +267,14 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
         *next++ = (value);                                                                         \
     } while (0)
 
-// pc and sp for the outside world.
-#define SAVE_STATE()                                                                               \
-    do {                                                                                           \
-        vm->pc = (uint16_t)(ip - bytecode);                                                        \
-        vm->sp = (int16_t)(next - vm->memory.stack - 1);                                           \
-    } while (0)
+// pc and sp for the outside world, from the run loop's pointers.
+static void save_state(vm_state *vm, const uint16_t *ip, const int16_t *next)
+{
+    vm->pc = (uint16_t)(ip - vm->memory.bytecode);
+    vm->sp = (int16_t)(next - vm->memory.stack - 1);
+}
+
+#define SAVE_STATE() save_state(vm, ip, next)
 
 // Runs at most `budget` instructions of the active event, whose bytecode the
 // verifier accepted. A run (as opposed to a single step) ends when a native
@@ -289,6 +291,7 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
     unsigned word;
     int16_t a = 0, b = 0; // operands (initialised for the compiler's flow analysis)
     const char *error;
+    enum run_outcome outcome;
 
 #if VM_USE_COMPUTED_GOTO
     static const void *const opcode_table[16] = {
@@ -319,8 +322,8 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
     VM_CASE(STOP)
     {
         vm->flags &= (uint16_t)~VM_FLAG_EVENT_ACTIVE;
-        SAVE_STATE();
-        return RUN_EVENT_ENDED;
+        outcome = RUN_EVENT_ENDED;
+        goto leave;
     }
 
     VM_CASE(SMALL_IMMEDIATE)
@@ -390,15 +393,19 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
         VM_NEXT();
     }
 
+#if VM_USE_COMPUTED_GOTO
+    // Each operator has its own code in each of the two instructions that
+    // use operators: the fastest dispatch.
     VM_CASE(BINARY_ARITHMETIC)
     {
-        b = *--next;
-        a = next[-1];
+        b = next[-1];
+        a = next[-2];
         VM_OPERATOR_SWITCH(arithmetic_table)
 #define VM_ARITHMETIC_CASE(name, expression)                                                       \
     VM_OPERATOR_CASE(arithmetic, name)                                                             \
     {                                                                                              \
-        next[-1] = (int16_t)(expression);                                                          \
+        next[-2] = (int16_t)(expression);                                                          \
+        next--;                                                                                    \
         ip++;                                                                                      \
         VM_NEXT();                                                                                 \
     }
@@ -407,35 +414,28 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
         VM_OPERATOR_CASE(arithmetic, DIV)
         {
             if (b == 0)
-                goto arithmetic_division_by_zero;
-            next[-1] = quotient(a, b);
+                goto division_by_zero;
+            next[-2] = quotient(a, b);
+            next--;
             ip++;
             VM_NEXT();
         }
         VM_OPERATOR_CASE(arithmetic, MOD)
         {
             if (b == 0)
-                goto arithmetic_division_by_zero;
-            next[-1] = remainder_of(a, b);
+                goto division_by_zero;
+            next[-2] = remainder_of(a, b);
+            next--;
             ip++;
             VM_NEXT();
         }
-        VM_OPERATOR_DEFAULT(arithmetic) goto unknown_operator;
         VM_OPERATOR_SWITCH_END
-    }
-
-    VM_CASE(JUMP)
-    {
-        // Sign-extend the 12-bit displacement.
-        ip += (int16_t)(uint16_t)(word << 4) >> 4;
-        VM_NEXT();
     }
 
     VM_CASE(CONDITIONAL_BRANCH)
     {
         b = next[-1];
         a = next[-2];
-        next -= 2;
         VM_OPERATOR_SWITCH(branch_table)
 #define VM_BRANCH_CASE(name, expression)                                                           \
     VM_OPERATOR_CASE(branch, name)                                                                 \
@@ -449,7 +449,7 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
         VM_OPERATOR_CASE(branch, DIV)
         {
             if (b == 0)
-                goto branch_division_by_zero;
+                goto division_by_zero;
             if (quotient(a, b) != 0)
                 goto branch_true;
             goto branch_false;
@@ -457,27 +457,73 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
         VM_OPERATOR_CASE(branch, MOD)
         {
             if (b == 0)
-                goto branch_division_by_zero;
+                goto division_by_zero;
             if (remainder_of(a, b) != 0)
                 goto branch_true;
             goto branch_false;
         }
-        VM_OPERATOR_DEFAULT(branch) goto unknown_operator;
         VM_OPERATOR_SWITCH_END
-    branch_true:
-        // The instruction word remembers the last result: a `when` takes its
-        // true path only on a false-to-true edge.
-        *ip = (uint16_t)(word | VM_BRANCH_WAS_TRUE_BIT);
-        if ((word & (VM_BRANCH_IS_WHEN_BIT | VM_BRANCH_WAS_TRUE_BIT)) !=
-            (VM_BRANCH_IS_WHEN_BIT | VM_BRANCH_WAS_TRUE_BIT)) {
-            ip += 2;
+    }
+#else
+    // The two instructions that use operators share one evaluation: the
+    // smallest code.
+    VM_CASE(BINARY_ARITHMETIC)
+    VM_CASE(CONDITIONAL_BRANCH)
+    {
+        int16_t result;
+
+        b = next[-1];
+        a = next[-2];
+        switch (word & VM_OPERATOR_MASK) {
+#define VM_RESULT_CASE(name, expression)                                                           \
+    case VM_BINARY_##name:                                                                         \
+        result = (int16_t)(expression);                                                            \
+        break;
+            VM_SIMPLE_BINARY_OPERATORS(VM_RESULT_CASE)
+#undef VM_RESULT_CASE
+        case VM_BINARY_DIV:
+        case VM_BINARY_MOD:
+            if (b == 0)
+                goto division_by_zero;
+            result =
+              (word & VM_OPERATOR_MASK) == VM_BINARY_DIV ? quotient(a, b) : remainder_of(a, b);
+            break;
+        default: goto unknown_operator;
+        }
+        if ((word >> VM_OPCODE_SHIFT) == VM_OP_BINARY_ARITHMETIC) {
+            next[-2] = result;
+            next--;
+            ip++;
             VM_NEXT();
         }
-        ip += (int16_t)ip[1];
+        if (result != 0)
+            goto branch_true;
+        goto branch_false;
+    }
+#endif
+
+branch_true:
+    // The operands leave the stack. The instruction word remembers the last
+    // result: a `when` takes its true path only on a false-to-true edge.
+    next -= 2;
+    *ip = (uint16_t)(word | VM_BRANCH_WAS_TRUE_BIT);
+    if ((word & (VM_BRANCH_IS_WHEN_BIT | VM_BRANCH_WAS_TRUE_BIT)) !=
+        (VM_BRANCH_IS_WHEN_BIT | VM_BRANCH_WAS_TRUE_BIT)) {
+        ip += 2;
         VM_NEXT();
-    branch_false:
-        *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
-        ip += (int16_t)ip[1];
+    }
+    ip += (int16_t)ip[1];
+    VM_NEXT();
+branch_false:
+    next -= 2;
+    *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
+    ip += (int16_t)ip[1];
+    VM_NEXT();
+
+    VM_CASE(JUMP)
+    {
+        // Sign-extend the 12-bit displacement.
+        ip += (int16_t)(uint16_t)(word << 4) >> 4;
         VM_NEXT();
     }
 
@@ -503,12 +549,12 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
         // A native may have stopped the event (an error) or, in a run,
         // cleared EVENT_RUNNING to end the run after this instruction.
         if (!(vm->flags & VM_FLAG_EVENT_ACTIVE)) {
-            vm->pc = (uint16_t)(ip - bytecode);
-            return RUN_ERROR;
+            outcome = RUN_ERROR;
+            goto leave;
         }
         if (running && !(vm->flags & VM_FLAG_EVENT_RUNNING)) {
-            vm->pc = (uint16_t)(ip - bytecode);
-            return RUN_INTERRUPTED;
+            outcome = RUN_INTERRUPTED;
+            goto leave;
         }
         VM_NEXT();
     }
@@ -538,23 +584,27 @@ case VM_OP_INVALID: goto unknown_bytecode;
     VM_LOOP_END
 
 budget_spent:
+    outcome = RUN_BUDGET_SPENT;
+leave:
     SAVE_STATE();
-    return RUN_BUDGET_SPENT;
+    return outcome;
 
-arithmetic_division_by_zero:
-    // The instruction completes with 0 and pc moves on, then the VM stops.
-    next[-1] = 0;
+division_by_zero:
+    // The instruction completes with a result of 0, then the VM stops: an
+    // arithmetic one leaves 0 and moves pc on, a branch takes its false path.
+    // Both operands are still on the stack here.
     SAVE_STATE();
-    vm_error_division_by_zero(vm);
-    vm->pc++;
-    return RUN_ERROR;
-
-branch_division_by_zero:
-    // The branch completes as false (its result is 0), then the VM stops.
-    SAVE_STATE();
-    *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
-    vm_error_division_by_zero(vm);
-    vm->pc = (uint16_t)(vm->pc + (int16_t)ip[1]);
+    if ((word >> VM_OPCODE_SHIFT) == VM_OP_BINARY_ARITHMETIC) {
+        next[-2] = 0;
+        vm->sp--;
+        vm_error_division_by_zero(vm);
+        vm->pc++;
+    } else {
+        vm->sp = (int16_t)(vm->sp - 2);
+        *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
+        vm_error_division_by_zero(vm);
+        vm->pc = (uint16_t)(vm->pc + (int16_t)ip[1]);
+    }
     return RUN_ERROR;
 
 array_out_of_bounds:

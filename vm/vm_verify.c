@@ -33,26 +33,31 @@
 
 #include <stddef.h>
 
-// The two halves of the opcode list's (pops, pushes) column.
+// An opcode's shape: its words (bits 0-1), the stack words it pops (bits
+// 2-3; a native's own count for NATIVE_CALL) and pushes (bit 4), and whether
+// execution may go on to the next instruction (bit 5).
+#define SHAPE_WORDS_MASK        0x03u
+#define SHAPE_POPS_SHIFT        2
+#define SHAPE_POPS_MASK         0x03u
+#define SHAPE_PUSHES_SHIFT      4
+#define SHAPE_GOES_ON           0x20u
 #define VM_POPS(pops, pushes)   pops
 #define VM_PUSHES(pops, pushes) pushes
+#define GOES_ON(code)                                                                              \
+    ((code) != VM_OP_STOP && (code) != VM_OP_JUMP && (code) != VM_OP_SUB_RET ? SHAPE_GOES_ON : 0)
 
-// What the walk needs to know of one instruction.
-typedef struct instruction {
-    uint16_t word;
-    uint16_t opcode;
-    uint16_t length; // words
-    uint16_t pops;   // stack words it needs
-    uint16_t pushes;
-    bool goes_on;           // whether the next instruction may follow it
-    bool jumps;             // JUMP, CONDITIONAL_BRANCH or SUB_CALL: `target` is set
-    bool needs_empty_stack; // the stack must be empty after its pops
-    uint16_t target;
-} instruction;
+static const uint8_t opcode_shapes[16] = {
+#define VM_OPCODE_SHAPE(name, code, words, stack, meaning)                                         \
+    [code] = (uint8_t)((words) | (VM_POPS stack) << SHAPE_POPS_SHIFT |                             \
+                       (VM_PUSHES stack) << SHAPE_PUSHES_SHIFT | GOES_ON(code)),
+    VM_OPCODE_LIST(VM_OPCODE_SHAPE)
+#undef VM_OPCODE_SHAPE
+      [VM_OP_INVALID] = 1,
+};
 
 typedef struct verifier {
     vm_state *vm;
-    const uint16_t *bytecode;
+    uint16_t *bytecode;
     uint16_t size;
     uint16_t code_start; // right after the event table
     uint16_t code_end;   // after the last instruction anything can reach
@@ -61,54 +66,118 @@ typedef struct verifier {
     uint16_t anchor_spacing; // words between anchored positions
 } verifier;
 
-// The instruction at pc, whose first word lies inside the bytecode. Operand
-// words are read only once the caller knows they are inside too.
-static instruction decode(const verifier *v, uint16_t pc)
+static uint16_t opcode_of(uint16_t word)
 {
-    instruction ins;
-    uint16_t word = v->bytecode[pc];
-
-    ins.word = word;
-    ins.opcode = word >> VM_OPCODE_SHIFT;
-    ins.length = vm_instruction_words(word);
-    ins.jumps = false;
-    ins.needs_empty_stack = false;
-    ins.target = 0;
-    switch (ins.opcode) {
-#define VM_OPCODE_EFFECTS(name, code, words, stack, meaning)                                       \
-    case code:                                                                                     \
-        ins.pops = VM_POPS stack;                                                                  \
-        ins.pushes = VM_PUSHES stack;                                                              \
-        break;
-        VM_OPCODE_LIST(VM_OPCODE_EFFECTS)
-#undef VM_OPCODE_EFFECTS
-    default: ins.pops = ins.pushes = 0; break;
-    }
-    ins.goes_on = ins.opcode != VM_OP_STOP && ins.opcode != VM_OP_JUMP &&
-                  ins.opcode != VM_OP_SUB_RET && ins.opcode != VM_OP_INVALID;
-    if (ins.opcode == VM_OP_JUMP) {
-        // Sign-extend the 12-bit displacement.
-        ins.target = (uint16_t)(pc + ((int16_t)(uint16_t)(word << 4) >> 4));
-        ins.jumps = ins.needs_empty_stack = true;
-    } else if (ins.opcode == VM_OP_CONDITIONAL_BRANCH && v->size - pc >= 2) {
-        ins.target = (uint16_t)(pc + v->bytecode[pc + 1]);
-        ins.jumps = ins.needs_empty_stack = true;
-    } else if (ins.opcode == VM_OP_SUB_CALL) {
-        // The callee's frame starts empty, above the return address.
-        ins.target = word & VM_OPERAND_MASK;
-        ins.jumps = true;
-    } else if (ins.opcode == VM_OP_SUB_RET) {
-        ins.needs_empty_stack = true;
-    } else if (ins.opcode == VM_OP_NATIVE_CALL && (word & VM_OPERAND_MASK) < v->vm->natives.count) {
-        ins.pops = v->vm->natives.natives[word & VM_OPERAND_MASK]->stack_words;
-    }
-    return ins;
+    return word >> VM_OPCODE_SHIFT;
 }
 
-// The depth after `ins`, run at `depth`, as the next instruction sees it.
-static uint16_t depth_after(const instruction *ins, uint16_t depth)
+// Stack words the instruction starting with `word` pops.
+static uint16_t pops_of(const vm_state *vm, uint16_t word)
 {
-    return ins->goes_on ? (uint16_t)(depth - ins->pops + ins->pushes) : 0;
+    uint16_t operand = word & VM_OPERAND_MASK;
+
+    if (opcode_of(word) == VM_OP_NATIVE_CALL && operand < vm->natives.count)
+        return vm->natives.natives[operand]->stack_words;
+    return opcode_shapes[opcode_of(word)] >> SHAPE_POPS_SHIFT & SHAPE_POPS_MASK;
+}
+
+// Moves the walk past the instruction at *pc: *depth becomes what the next
+// instruction sees. The instruction lies inside the bytecode.
+static void step(const verifier *v, uint16_t *pc, uint16_t *depth)
+{
+    uint16_t word = v->bytecode[*pc];
+    uint8_t shape = opcode_shapes[opcode_of(word)];
+
+    if (shape & SHAPE_GOES_ON)
+        *depth = (uint16_t)(*depth - pops_of(v->vm, word) + (shape >> SHAPE_PUSHES_SHIFT & 1));
+    else
+        *depth = 0;
+    *pc = (uint16_t)(*pc + (shape & SHAPE_WORDS_MASK));
+}
+
+// Whether the instruction starting with `word` jumps, branches or calls.
+static bool has_target(uint16_t word)
+{
+    uint16_t opcode = opcode_of(word);
+
+    return opcode == VM_OP_JUMP || opcode == VM_OP_CONDITIONAL_BRANCH || opcode == VM_OP_SUB_CALL;
+}
+
+// Where the jump, branch or call at pc, whole inside the bytecode, leads.
+static uint16_t target_of(const uint16_t *bytecode, uint16_t pc)
+{
+    uint16_t word = bytecode[pc];
+
+    if (opcode_of(word) == VM_OP_JUMP) // sign-extend the 12-bit displacement
+        return (uint16_t)(pc + ((int16_t)(uint16_t)(word << 4) >> 4));
+    if (opcode_of(word) == VM_OP_CONDITIONAL_BRANCH)
+        return (uint16_t)(pc + bytecode[pc + 1]);
+    return word & VM_OPERAND_MASK; // SUB_CALL's absolute address
+}
+
+// Whether `count` words from `address` lie inside the variables.
+static bool inside_variables(const vm_state *vm, uint16_t address, uint16_t count)
+{
+    return address <= vm->memory.variables_size && count <= vm->memory.variables_size - address;
+}
+
+// What is wrong with the instruction at pc, run with `depth` words on the
+// stack, or NULL.
+static const char *fault_at(const verifier *v, uint16_t pc, uint16_t depth)
+{
+    const vm_state *vm = v->vm;
+    const uint16_t *bytecode = v->bytecode;
+    uint16_t word = bytecode[pc];
+    uint16_t opcode = opcode_of(word);
+    uint16_t operand = word & VM_OPERAND_MASK;
+    uint16_t operator_code = word & VM_OPERATOR_MASK;
+    uint16_t pops = pops_of(vm, word);
+
+    if ((uint16_t)(v->size - pc) < (opcode_shapes[opcode] & SHAPE_WORDS_MASK))
+        return vm_error_bytecode_bounds;
+    switch (opcode) {
+    case VM_OP_LOAD:
+    case VM_OP_STORE:
+        if (operand >= vm->memory.variables_size)
+            return vm_error_variables_bounds;
+        break;
+    case VM_OP_LOAD_INDIRECT:
+    case VM_OP_STORE_INDIRECT:
+        // The array, word 1 long: an index below its size is then inside.
+        if (!inside_variables(vm, operand, bytecode[pc + 1]))
+            return vm_error_variables_bounds;
+        break;
+    case VM_OP_UNARY_ARITHMETIC:
+        if (operator_code >= VM_UNARY_NOT)
+            return vm_error_unknown_operator;
+        break;
+    case VM_OP_BINARY_ARITHMETIC:
+    case VM_OP_CONDITIONAL_BRANCH:
+        if (operator_code >= VM_BINARY_OPERATOR_COUNT)
+            return vm_error_unknown_operator;
+        break;
+    case VM_OP_EMIT:
+        if (bytecode[pc + 2] > VM_MAX_EVENT_WORDS)
+            return vm_error_event_too_large;
+        if (!inside_variables(vm, bytecode[pc + 1], bytecode[pc + 2]))
+            return vm_error_variables_bounds;
+        break;
+    case VM_OP_NATIVE_CALL:
+        if (operand >= vm->natives.count || pops > VM_MAX_NATIVE_ARGUMENTS)
+            return vm_error_unknown_native;
+        break;
+    case VM_OP_INVALID: return vm_error_unknown_bytecode;
+    default: break;
+    }
+    if (depth < pops)
+        return vm_error_stack_underflow;
+    // Jumps, branches and returns leave with an empty stack (calls need not:
+    // the callee's stack starts above the return address).
+    if (opcode != VM_OP_SUB_CALL && (has_target(word) || opcode == VM_OP_SUB_RET) && depth != pops)
+        return vm_error_invalid_jump;
+    if (has_target(word) && target_of(bytecode, pc) >= v->size)
+        return vm_error_bytecode_bounds;
+    return NULL;
 }
 
 static bool reject(vm_state *vm, uint16_t pc, const char *error)
@@ -118,78 +187,24 @@ static bool reject(vm_state *vm, uint16_t pc, const char *error)
     return false;
 }
 
-// Whether `count` words from `address` lie inside the variables.
-static bool inside_variables(const vm_state *vm, uint16_t address, uint16_t count)
-{
-    return address <= vm->memory.variables_size && count <= vm->memory.variables_size - address;
-}
-
-// The checks of one instruction at pc, run with `depth` words on the stack.
-static bool check(const verifier *v, uint16_t pc, uint16_t depth, const instruction *ins)
-{
-    vm_state *vm = v->vm;
-    uint16_t operand = ins->word & VM_OPERAND_MASK;
-    uint16_t operator_code = ins->word & VM_OPERATOR_MASK;
-
-    if ((uint16_t)(v->size - pc) < ins->length)
-        return reject(vm, pc, vm_error_bytecode_bounds);
-    switch (ins->opcode) {
-    case VM_OP_LOAD:
-    case VM_OP_STORE:
-        if (operand >= vm->memory.variables_size)
-            return reject(vm, pc, vm_error_variables_bounds);
-        break;
-    case VM_OP_LOAD_INDIRECT:
-    case VM_OP_STORE_INDIRECT:
-        // The array, word 1 long: an index below its size is then inside.
-        if (!inside_variables(vm, operand, v->bytecode[pc + 1]))
-            return reject(vm, pc, vm_error_variables_bounds);
-        break;
-    case VM_OP_UNARY_ARITHMETIC:
-        if (operator_code >= VM_UNARY_NOT)
-            return reject(vm, pc, vm_error_unknown_operator);
-        break;
-    case VM_OP_BINARY_ARITHMETIC:
-    case VM_OP_CONDITIONAL_BRANCH:
-        if (operator_code >= VM_BINARY_OPERATOR_COUNT)
-            return reject(vm, pc, vm_error_unknown_operator);
-        break;
-    case VM_OP_EMIT:
-        if (v->bytecode[pc + 2] > VM_MAX_EVENT_WORDS)
-            return reject(vm, pc, vm_error_event_too_large);
-        if (!inside_variables(vm, v->bytecode[pc + 1], v->bytecode[pc + 2]))
-            return reject(vm, pc, vm_error_variables_bounds);
-        break;
-    case VM_OP_NATIVE_CALL:
-        if (operand >= vm->natives.count || ins->pops > VM_MAX_NATIVE_ARGUMENTS)
-            return reject(vm, pc, vm_error_unknown_native);
-        break;
-    case VM_OP_INVALID: return reject(vm, pc, vm_error_unknown_bytecode);
-    default: break;
-    }
-    if (depth < ins->pops)
-        return reject(vm, pc, vm_error_stack_underflow);
-    if (ins->needs_empty_stack && depth != ins->pops)
-        return reject(vm, pc, vm_error_invalid_jump);
-    if (ins->jumps && ins->target >= v->size)
-        return reject(vm, pc, vm_error_bytecode_bounds);
-    return true;
-}
-
-// Pass 1: checks every instruction of the code, finds where the code ends,
+// Pass 1: checks every instruction of the code, finds where the code ends
+// (`reach`: after the furthest place an entry, jump or call leads to so far),
 // writes the anchors and clears the was-true bits.
 static bool walk_code(verifier *v, uint16_t reach)
 {
-    uint16_t *bytecode = v->vm->memory.bytecode;
     uint16_t pc = v->code_start;
     uint16_t depth = 0;
     uint16_t last_empty = pc;
     uint16_t next_anchor = 0;
-    uint32_t next_anchor_start = 0;
+    // Where the next anchored block starts. On the largest memories it may
+    // wrap around 16 bits: anchors are then taken early, which is still
+    // before their blocks (only further from them).
+    uint16_t next_anchor_start = 0;
     bool goes_on = false;
 
     while (pc < reach || goes_on) {
-        instruction ins;
+        uint16_t word;
+        const char *fault;
 
         if (pc >= v->size) // the last instruction goes on past the end
             return reject(v->vm, v->code_end, vm_error_bytecode_bounds);
@@ -197,19 +212,19 @@ static bool walk_code(verifier *v, uint16_t reach)
             last_empty = pc;
         while (next_anchor < v->anchor_count && next_anchor_start <= pc) {
             v->anchors[next_anchor++] = last_empty;
-            next_anchor_start += v->anchor_spacing;
+            next_anchor_start = (uint16_t)(next_anchor_start + v->anchor_spacing);
         }
-        ins = decode(v, pc);
-        if (!check(v, pc, depth, &ins))
-            return false;
-        if (ins.jumps && ins.target >= reach)
-            reach = (uint16_t)(ins.target + 1);
-        if (ins.opcode == VM_OP_CONDITIONAL_BRANCH) // `when` starts as false (bytecode.md §5.1)
-            bytecode[pc] &= (uint16_t)~VM_BRANCH_WAS_TRUE_BIT;
-        depth = depth_after(&ins, depth);
-        goes_on = ins.goes_on;
+        fault = fault_at(v, pc, depth);
+        if (fault != NULL)
+            return reject(v->vm, pc, fault);
+        word = v->bytecode[pc];
+        if (has_target(word) && target_of(v->bytecode, pc) >= reach)
+            reach = (uint16_t)(target_of(v->bytecode, pc) + 1);
+        if (opcode_of(word) == VM_OP_CONDITIONAL_BRANCH) // `when` starts false (§5.1)
+            v->bytecode[pc] = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
+        goes_on = (opcode_shapes[opcode_of(word)] & SHAPE_GOES_ON) != 0;
         v->code_end = pc; // the last instruction, until the loop ends
-        pc = (uint16_t)(pc + ins.length);
+        step(v, &pc, &depth);
     }
     v->code_end = pc;
     while (next_anchor < v->anchor_count)
@@ -228,27 +243,23 @@ static bool is_empty_start(const verifier *v, uint16_t target)
         return false;
     if (v->anchor_count > 0)
         pc = v->anchors[target / v->anchor_spacing];
-    while (pc < target) {
-        instruction ins = decode(v, pc);
-
-        depth = depth_after(&ins, depth);
-        pc = (uint16_t)(pc + ins.length);
-    }
+    while (pc < target)
+        step(v, &pc, &depth);
     return pc == target && depth == 0;
 }
 
-// Pass 2: every target of the code, and every event address.
+// Pass 2: the target of every jump, branch and call of the code, and every
+// event address.
 static bool check_targets(const verifier *v, uint16_t table_size)
 {
-    uint16_t pc;
+    uint16_t pc = v->code_start;
+    uint16_t depth = 0;
     uint16_t i;
 
-    for (pc = v->code_start; pc < v->code_end;) {
-        instruction ins = decode(v, pc);
-
-        if (ins.jumps && !is_empty_start(v, ins.target))
+    while (pc < v->code_end) {
+        if (has_target(v->bytecode[pc]) && !is_empty_start(v, target_of(v->bytecode, pc)))
             return reject(v->vm, pc, vm_error_invalid_jump);
-        pc = (uint16_t)(pc + ins.length);
+        step(v, &pc, &depth);
     }
     for (i = 1; i < table_size && i + 1 < v->size; i += 2) {
         uint16_t address = v->bytecode[i + 1];
@@ -286,16 +297,16 @@ void vm_verify(vm_state *vm)
             reject(vm, (uint16_t)(i + 1), vm_error_bytecode_bounds);
             return;
         }
-        if (address != 0 && address >= reach)
+        if (address >= reach)
             reach = (uint16_t)(address + 1);
     }
     v.code_start = table_size;
     v.code_end = table_size;
     v.anchors = (uint16_t *)vm->memory.stack;
     v.anchor_count = vm->memory.stack_size;
-    // Every word below `size` has an anchor: count * spacing >= size.
-    v.anchor_spacing =
-      v.anchor_count > 0 ? (uint16_t)(((uint32_t)v.size + v.anchor_count - 1) / v.anchor_count) : 0;
+    // Every word below `size` has an anchor: spacing = size / count rounded
+    // up, so count * spacing >= size.
+    v.anchor_spacing = v.anchor_count > 0 ? (uint16_t)((v.size - 1u) / v.anchor_count + 1u) : 0;
     if (walk_code(&v, reach))
         check_targets(&v, table_size);
 }
