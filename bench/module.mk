@@ -30,3 +30,9 @@ PROGRAMS += bench-node
 bench-node_SOURCES := bench/node_bench.cpp tests/interop/child_process.cpp \
                       tests/interop/interop_support.cpp
 bench-node_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
+
+# The VM on a 16-bit-int AVR: simavr runs bench/avr_workload.c (which
+# scripts/bench.sh builds with avr-gcc) and this counts its instructions.
+PROGRAMS += avr-step-counter
+avr-step-counter_SOURCES := bench/avr_step_counter.c
+avr-step-counter_LDLIBS := -lsimavr

@@ -9,6 +9,7 @@ packages=(
     clang libclang-rt-14-dev                       # fuzzing (libFuzzer) and sanitizers
     gcc-avr avr-libc binutils-avr                  # cross-check: 16-bit int
     gcc-arm-none-eabi libnewlib-arm-none-eabi      # cross-check: Cortex-M
+    simavr libsimavr-dev                           # benchmarks: the VM on an AVR
     aseba libdashel-dev locales                    # the reference implementation (tests only)
     valgrind                                       # instruction counts in benchmarks
     python3                                        # test and benchmark scripts
