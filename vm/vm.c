@@ -220,8 +220,9 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
 // The dispatch is written once and compiles as a switch (the reference, for
 // compilers without `&&label`) or, with VM_USE_COMPUTED_GOTO, as jumps
 // through tables of labels. Operators dispatch the same way, on bits 7..0.
-// The budget (at least 1) is counted after each instruction, so that the
-// count fits the word it was given in and costs one decrement and a branch.
+// Computed goto counts the budget (at least 1) after each instruction, in
+// each one's code: one decrement and a branch, and the count fits the word
+// it was given in.
 #if VM_USE_COMPUTED_GOTO
 #define VM_LOOP_BEGIN VM_DISPATCH();
 #define VM_LOOP_END
@@ -241,19 +242,18 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
 #define VM_OPERATOR_DEFAULT(table)
 #define VM_OPERATOR_SWITCH_END
 #else
+// The switch counts the budget once, before each instruction: less code.
 #define VM_LOOP_BEGIN                                                                              \
     for (;;) {                                                                                     \
+        if (remaining-- == 0)                                                                      \
+            goto budget_spent;                                                                     \
         word = *ip;                                                                                \
         switch (word >> VM_OPCODE_SHIFT) {
 #define VM_LOOP_END                                                                                \
     }                                                                                              \
     }
 #define VM_CASE(name) case VM_OP_##name:
-#define VM_NEXT()                                                                                  \
-    if (--remaining != 0)                                                                          \
-        continue;                                                                                  \
-    else                                                                                           \
-        goto budget_spent
+#define VM_NEXT()     continue
 #define VM_OPERATOR_SWITCH(table)     switch (word & VM_OPERATOR_MASK) {
 #define VM_OPERATOR_CASE(table, name) case VM_BINARY_##name:
 #define VM_OPERATOR_DEFAULT(table)    default:
