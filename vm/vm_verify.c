@@ -34,22 +34,31 @@
 #include <stddef.h>
 
 // An opcode's shape: its words (bits 0-1), the stack words it pops (bits
-// 2-3; a native's own count for NATIVE_CALL) and pushes (bit 4), and whether
-// execution may go on to the next instruction (bit 5).
-#define SHAPE_WORDS_MASK        0x03u
-#define SHAPE_POPS_SHIFT        2
-#define SHAPE_POPS_MASK         0x03u
-#define SHAPE_PUSHES_SHIFT      4
-#define SHAPE_GOES_ON           0x20u
-#define VM_POPS(pops, pushes)   pops
-#define VM_PUSHES(pops, pushes) pushes
-#define GOES_ON(code)                                                                              \
-    ((code) != VM_OP_STOP && (code) != VM_OP_JUMP && (code) != VM_OP_SUB_RET ? SHAPE_GOES_ON : 0)
+// 2-3; a native's own count for NATIVE_CALL) and pushes (bit 4), whether
+// execution may go on to the next instruction, whether it leads elsewhere
+// (a jump, branch or call) and whether the stack must be empty after its
+// pops (a jump, branch or return).
+#define SHAPE_WORDS_MASK         0x03u
+#define SHAPE_POPS_SHIFT         2
+#define SHAPE_POPS_MASK          0x03u
+#define SHAPE_PUSHES_SHIFT       4
+#define SHAPE_GOES_ON            0x20u
+#define SHAPE_HAS_TARGET         0x40u
+#define SHAPE_LEAVES_EMPTY       0x80u
+#define VM_POPS(pops, pushes)    pops
+#define VM_PUSHES(pops, pushes)  pushes
+#define IS_ONE_OF(code, a, b, c) ((code) == (a) || (code) == (b) || (code) == (c))
+#define SHAPE_FLAGS(code)                                                                          \
+    ((IS_ONE_OF(code, VM_OP_STOP, VM_OP_JUMP, VM_OP_SUB_RET) ? 0 : SHAPE_GOES_ON) |                \
+     (IS_ONE_OF(code, VM_OP_JUMP, VM_OP_CONDITIONAL_BRANCH, VM_OP_SUB_CALL) ? SHAPE_HAS_TARGET     \
+                                                                            : 0) |                 \
+     (IS_ONE_OF(code, VM_OP_JUMP, VM_OP_CONDITIONAL_BRANCH, VM_OP_SUB_RET) ? SHAPE_LEAVES_EMPTY    \
+                                                                           : 0))
 
 static const uint8_t opcode_shapes[16] = {
 #define VM_OPCODE_SHAPE(name, code, words, stack, meaning)                                         \
     [code] = (uint8_t)((words) | (VM_POPS stack) << SHAPE_POPS_SHIFT |                             \
-                       (VM_PUSHES stack) << SHAPE_PUSHES_SHIFT | GOES_ON(code)),
+                       (VM_PUSHES stack) << SHAPE_PUSHES_SHIFT | SHAPE_FLAGS(code)),
     VM_OPCODE_LIST(VM_OPCODE_SHAPE)
 #undef VM_OPCODE_SHAPE
       [VM_OP_INVALID] = 1,
@@ -95,24 +104,24 @@ static void step(const verifier *v, uint16_t *pc, uint16_t *depth)
     *pc = (uint16_t)(*pc + (shape & SHAPE_WORDS_MASK));
 }
 
-// Whether the instruction starting with `word` jumps, branches or calls.
-static bool has_target(uint16_t word)
+// Whether the instruction starting with `word` has `flag` in its shape.
+static bool has_shape(uint16_t word, uint8_t flag)
 {
-    uint16_t opcode = opcode_of(word);
-
-    return opcode == VM_OP_JUMP || opcode == VM_OP_CONDITIONAL_BRANCH || opcode == VM_OP_SUB_CALL;
+    return (opcode_shapes[opcode_of(word)] & flag) != 0;
 }
 
-// Where the jump, branch or call at pc, whole inside the bytecode, leads.
+// Where the jump, branch or call at pc, whole inside the bytecode, leads;
+// 0 for other instructions.
 static uint16_t target_of(const uint16_t *bytecode, uint16_t pc)
 {
     uint16_t word = bytecode[pc];
 
-    if (opcode_of(word) == VM_OP_JUMP) // sign-extend the 12-bit displacement
-        return (uint16_t)(pc + ((int16_t)(uint16_t)(word << 4) >> 4));
-    if (opcode_of(word) == VM_OP_CONDITIONAL_BRANCH)
-        return (uint16_t)(pc + bytecode[pc + 1]);
-    return word & VM_OPERAND_MASK; // SUB_CALL's absolute address
+    switch (opcode_of(word)) {
+    case VM_OP_JUMP: return (uint16_t)(pc + ((int16_t)(uint16_t)(word << 4) >> 4));
+    case VM_OP_CONDITIONAL_BRANCH: return (uint16_t)(pc + bytecode[pc + 1]);
+    case VM_OP_SUB_CALL: return word & VM_OPERAND_MASK; // an absolute address
+    default: return 0;
+    }
 }
 
 // Whether `count` words from `address` lie inside the variables.
@@ -173,9 +182,9 @@ static const char *fault_at(const verifier *v, uint16_t pc, uint16_t depth)
         return vm_error_stack_underflow;
     // Jumps, branches and returns leave with an empty stack (calls need not:
     // the callee's stack starts above the return address).
-    if (opcode != VM_OP_SUB_CALL && (has_target(word) || opcode == VM_OP_SUB_RET) && depth != pops)
+    if (has_shape(word, SHAPE_LEAVES_EMPTY) && depth != pops)
         return vm_error_invalid_jump;
-    if (has_target(word) && target_of(bytecode, pc) >= v->size)
+    if (target_of(bytecode, pc) >= v->size)
         return vm_error_bytecode_bounds;
     return NULL;
 }
@@ -204,6 +213,7 @@ static bool walk_code(verifier *v, uint16_t reach)
 
     while (pc < reach || goes_on) {
         uint16_t word;
+        uint16_t target;
         const char *fault;
 
         if (pc >= v->size) // the last instruction goes on past the end
@@ -218,11 +228,12 @@ static bool walk_code(verifier *v, uint16_t reach)
         if (fault != NULL)
             return reject(v->vm, pc, fault);
         word = v->bytecode[pc];
-        if (has_target(word) && target_of(v->bytecode, pc) >= reach)
-            reach = (uint16_t)(target_of(v->bytecode, pc) + 1);
+        target = target_of(v->bytecode, pc);
+        if (target >= reach)
+            reach = (uint16_t)(target + 1);
         if (opcode_of(word) == VM_OP_CONDITIONAL_BRANCH) // `when` starts false (§5.1)
             v->bytecode[pc] = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
-        goes_on = (opcode_shapes[opcode_of(word)] & SHAPE_GOES_ON) != 0;
+        goes_on = has_shape(word, SHAPE_GOES_ON);
         v->code_end = pc; // the last instruction, until the loop ends
         step(v, &pc, &depth);
     }
@@ -257,7 +268,8 @@ static bool check_targets(const verifier *v, uint16_t table_size)
     uint16_t i;
 
     while (pc < v->code_end) {
-        if (has_target(v->bytecode[pc]) && !is_empty_start(v, target_of(v->bytecode, pc)))
+        if (has_shape(v->bytecode[pc], SHAPE_HAS_TARGET) &&
+            !is_empty_start(v, target_of(v->bytecode, pc)))
             return reject(v->vm, pc, vm_error_invalid_jump);
         step(v, &pc, &depth);
     }
