@@ -41,10 +41,17 @@ vm_reference_test_LDLIBS := -lasebavm $(VM_TEST_GTEST_LDLIBS)
 EXTRA_CFLAGS_tests/vm/reference_node := -isystem /usr/include/aseba
 
 # Random images and commands; meant for the sanitizer build (`make test`).
+# Both dispatch variants: the run loop trusts the verifier in each.
+VM_FUZZ_TEST_SOURCES := tests/vm/fuzz_test.cpp tests/vm/fuzz_driver.cpp tests/vm/random_program.cpp
 TESTS += vm_fuzz_test
-vm_fuzz_test_SOURCES := tests/vm/fuzz_test.cpp tests/vm/fuzz_driver.cpp tests/vm/random_program.cpp
+vm_fuzz_test_SOURCES := $(VM_FUZZ_TEST_SOURCES)
 vm_fuzz_test_LIBS := test_support aseba_vm
 vm_fuzz_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
+
+TESTS += vm_fuzz_switch_test
+vm_fuzz_switch_test_SOURCES := $(VM_FUZZ_TEST_SOURCES)
+vm_fuzz_switch_test_LIBS := test_support aseba_vm_switch
+vm_fuzz_switch_test_LDLIBS := $(VM_TEST_GTEST_LDLIBS)
 
 # The verifier on every program a compiler produces: ours and the reference
 # (Debian's libasebacompiler, as in tests/compiler), on the upstream corpus,
