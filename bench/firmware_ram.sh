@@ -14,7 +14,8 @@ flags=(-std=gnu99 -Os -ffreestanding -mmcu=atmega1284p -I. -Ivm -Inative_functio
        -DDSPIC30_SIMULATED_REGISTERS '-DVM_TARGET_CONFIG="firmware/epuck_config.h"')
 
 sources=()
-for source in $(make -s --no-print-directory sources-DSPIC30_APPLICATION); do
+# (MAKEFLAGS emptied: run from make, the inner make must not look for its jobs.)
+for source in $(MAKEFLAGS= make -s --no-print-directory sources-DSPIC30_APPLICATION); do
     [[ $source == *_dspic30.c && $source == native_functions/* ]] && continue
     sources+=("$source")
 done

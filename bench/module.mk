@@ -36,3 +36,11 @@ bench-node_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
 PROGRAMS += avr-step-counter
 avr-step-counter_SOURCES := bench/avr_step_counter.c
 avr-step-counter_LDLIBS := -lsimavr
+
+# `make cross-check` also prints the RAM of the e-puck firmware, measured on
+# a linked 16-bit image (bench/firmware_ram.sh; `make bench` gives its parts).
+.PHONY: firmware-ram
+firmware-ram: | $(DEPS_STAMP)
+	@bench/firmware_ram.sh $(BUILD) | awk '$$1 == "total" { \
+	    printf "== e-puck firmware, linked 16-bit image (avr-gcc): %d bytes of RAM\n", $$2 }'
+cross-check: firmware-ram
