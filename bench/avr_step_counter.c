@@ -5,6 +5,7 @@
 //
 //   avr-step-counter IMAGE.elf      ->  instructions cycles checksum
 //
+// (on the last line of the output: simavr prints what it loads before).
 // Instruction by instruction: simavr's avr_run executes one per call.
 
 #include <inttypes.h>

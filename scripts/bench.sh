@@ -73,7 +73,8 @@ avr_vm() { # dispatch (0: switch, 1: computed goto) -> "instructions cycles"
         -ffunction-sections -fdata-sections -Wl,--gc-sections bench/avr_workload.c \
         vm/vm.c vm/vm_debug.c vm/vm_verify.c -o "$scratch/avr-$1.elf"
     local instructions cycles checksum
-    read -r instructions cycles checksum < <("$bin/avr-step-counter" "$scratch/avr-$1.elf" 2>/dev/null)
+    # simavr prints its own lines first: the counts are the last one.
+    read -r instructions cycles checksum < <("$bin/avr-step-counter" "$scratch/avr-$1.elf" | tail -n 1)
     if [ "$checksum" != "$host_checksum" ]; then
         echo "bench: the AVR run of the workload ended with other variables" >&2
         exit 1
