@@ -184,6 +184,12 @@ static inline int16_t remainder_of(int16_t a, int16_t b)
     return b == -1 ? 0 : (int16_t)(a % b);
 }
 
+// DIV or MOD, as the instruction `word` says, by a divisor that is not 0.
+static inline int16_t divide(unsigned word, int16_t a, int16_t b)
+{
+    return (word & VM_OPERATOR_MASK) == VM_BINARY_DIV ? quotient(a, b) : remainder_of(a, b);
+}
+
 static bool at_breakpoint(const vm_state *vm, uint16_t pc)
 {
     uint16_t i;
@@ -219,7 +225,7 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
 
 // The dispatch is written once and compiles as a switch (the reference, for
 // compilers without `&&label`) or, with VM_USE_COMPUTED_GOTO, as jumps
-// through tables of labels. Operators dispatch the same way, on bits 7..0.
+// through tables of labels (and then operators too, on bits 7..0).
 // Computed goto counts the budget (at least 1) after each instruction, in
 // each one's code: one decrement and a branch, and the count fits the word
 // it was given in.
@@ -237,10 +243,6 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
         VM_DISPATCH();                                                                             \
     else                                                                                           \
         goto budget_spent
-#define VM_OPERATOR_SWITCH(table)     goto *table[word & VM_OPERATOR_MASK];
-#define VM_OPERATOR_CASE(table, name) table##_##name:
-#define VM_OPERATOR_DEFAULT(table)
-#define VM_OPERATOR_SWITCH_END
 #else
 // The switch counts the budget once, before each instruction: less code.
 #define VM_LOOP_BEGIN                                                                              \
@@ -254,10 +256,6 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
     }
 #define VM_CASE(name) case VM_OP_##name:
 #define VM_NEXT()     continue
-#define VM_OPERATOR_SWITCH(table)     switch (word & VM_OPERATOR_MASK) {
-#define VM_OPERATOR_CASE(table, name) case VM_BINARY_##name:
-#define VM_OPERATOR_DEFAULT(table)    default:
-#define VM_OPERATOR_SWITCH_END        }
 #endif
 
 #define PUSH(value)                                                                                \
@@ -273,8 +271,6 @@ static void save_state(vm_state *vm, const uint16_t *ip, const int16_t *next)
     vm->pc = (uint16_t)(ip - vm->memory.bytecode);
     vm->sp = (int16_t)(next - vm->memory.stack - 1);
 }
-
-#define SAVE_STATE() save_state(vm, ip, next)
 
 // Runs at most `budget` instructions of the active event, whose bytecode the
 // verifier accepted. A run (as opposed to a single step) ends when a native
@@ -400,9 +396,9 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
     {
         b = next[-1];
         a = next[-2];
-        VM_OPERATOR_SWITCH(arithmetic_table)
+        goto *arithmetic_table[word & VM_OPERATOR_MASK];
 #define VM_ARITHMETIC_CASE(name, expression)                                                       \
-    VM_OPERATOR_CASE(arithmetic, name)                                                             \
+    arithmetic_##name:                                                                             \
     {                                                                                              \
         next[-2] = (int16_t)(expression);                                                          \
         next--;                                                                                    \
@@ -411,34 +407,23 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
     }
         VM_SIMPLE_BINARY_OPERATORS(VM_ARITHMETIC_CASE)
 #undef VM_ARITHMETIC_CASE
-        VM_OPERATOR_CASE(arithmetic, DIV)
-        {
-            if (b == 0)
-                goto division_by_zero;
-            next[-2] = quotient(a, b);
-            next--;
-            ip++;
-            VM_NEXT();
-        }
-        VM_OPERATOR_CASE(arithmetic, MOD)
-        {
-            if (b == 0)
-                goto division_by_zero;
-            next[-2] = remainder_of(a, b);
-            next--;
-            ip++;
-            VM_NEXT();
-        }
-        VM_OPERATOR_SWITCH_END
+    arithmetic_DIV:
+    arithmetic_MOD:
+        if (b == 0)
+            goto division_by_zero;
+        next[-2] = divide(word, a, b);
+        next--;
+        ip++;
+        VM_NEXT();
     }
 
     VM_CASE(CONDITIONAL_BRANCH)
     {
         b = next[-1];
         a = next[-2];
-        VM_OPERATOR_SWITCH(branch_table)
+        goto *branch_table[word & VM_OPERATOR_MASK];
 #define VM_BRANCH_CASE(name, expression)                                                           \
-    VM_OPERATOR_CASE(branch, name)                                                                 \
+    branch_##name:                                                                                 \
     {                                                                                              \
         if (expression)                                                                            \
             goto branch_true;                                                                      \
@@ -446,23 +431,13 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
     }
         VM_SIMPLE_BINARY_OPERATORS(VM_BRANCH_CASE)
 #undef VM_BRANCH_CASE
-        VM_OPERATOR_CASE(branch, DIV)
-        {
-            if (b == 0)
-                goto division_by_zero;
-            if (quotient(a, b) != 0)
-                goto branch_true;
-            goto branch_false;
-        }
-        VM_OPERATOR_CASE(branch, MOD)
-        {
-            if (b == 0)
-                goto division_by_zero;
-            if (remainder_of(a, b) != 0)
-                goto branch_true;
-            goto branch_false;
-        }
-        VM_OPERATOR_SWITCH_END
+    branch_DIV:
+    branch_MOD:
+        if (b == 0)
+            goto division_by_zero;
+        if (divide(word, a, b) != 0)
+            goto branch_true;
+        goto branch_false;
     }
 #else
     // The two instructions that use operators share one evaluation: the
@@ -485,8 +460,7 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
         case VM_BINARY_MOD:
             if (b == 0)
                 goto division_by_zero;
-            result =
-              (word & VM_OPERATOR_MASK) == VM_BINARY_DIV ? quotient(a, b) : remainder_of(a, b);
+            result = divide(word, a, b);
             break;
         default: goto unknown_operator;
         }
@@ -529,7 +503,7 @@ branch_false:
 
     VM_CASE(EMIT)
     {
-        SAVE_STATE();
+        save_state(vm, ip, next);
         vm->callbacks->emit(vm->context, word & VM_OPERAND_MASK, variables + ip[1], ip[2]);
         ip += 3;
         VM_NEXT();
@@ -543,7 +517,7 @@ branch_false:
 
         for (i = 0; i < native->stack_words; i++)
             arguments[i] = *--next;
-        SAVE_STATE();
+        save_state(vm, ip, next);
         native->function(vm, arguments);
         ip++;
         // A native may have stopped the event (an error) or, in a run,
@@ -586,14 +560,14 @@ case VM_OP_INVALID: goto unknown_bytecode;
 budget_spent:
     outcome = RUN_BUDGET_SPENT;
 leave:
-    SAVE_STATE();
+    save_state(vm, ip, next);
     return outcome;
 
 division_by_zero:
     // The instruction completes with a result of 0, then the VM stops: an
     // arithmetic one leaves 0 and moves pc on, a branch takes its false path.
     // Both operands are still on the stack here.
-    SAVE_STATE();
+    save_state(vm, ip, next);
     if ((word >> VM_OPCODE_SHIFT) == VM_OP_BINARY_ARITHMETIC) {
         next[-2] = 0;
         vm->sp--;
@@ -609,7 +583,7 @@ division_by_zero:
 
 array_out_of_bounds:
     // pc stays on the faulty instruction (bytecode.md §8.1).
-    SAVE_STATE();
+    save_state(vm, ip, next);
     vm_error_array_access(vm, ip[1], (uint16_t)next[-1]);
     return RUN_ERROR;
 
@@ -625,7 +599,7 @@ unknown_bytecode:
 unknown_operator:
     error = vm_error_unknown_operator;
 node_error:
-    SAVE_STATE();
+    save_state(vm, ip, next);
     vm_error_node_specific(vm, error);
     return RUN_ERROR;
 }
