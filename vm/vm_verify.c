@@ -25,8 +25,9 @@
 // Checking a jump needs the depth at its target, but a table with an entry
 // per word is more RAM than the e-puck can spare. While the first walk goes,
 // it writes anchors into the VM's stack memory (idle while no event is
-// active): for every few words, the last instruction start before them where
-// the stack is empty. A target is then checked by walking from its anchor.
+// active): for every few words, the first instruction at or after them and
+// the depth there. A target is then checked by walking from its anchor, a
+// few instructions at most.
 
 #include "vm_internal.h"
 #include "vm_opcodes.h"
@@ -70,7 +71,7 @@ typedef struct verifier {
     uint16_t size;
     uint16_t code_start; // right after the event table
     uint16_t code_end;   // after the last instruction anything can reach
-    uint16_t *anchors;   // in the stack memory
+    uint16_t *anchors;   // in the stack memory: pairs of pc and depth
     uint16_t anchor_count;
     uint16_t anchor_spacing; // words between anchored positions
 } verifier;
@@ -203,7 +204,6 @@ static bool walk_code(verifier *v, uint16_t reach)
 {
     uint16_t pc = v->code_start;
     uint16_t depth = 0;
-    uint16_t last_empty = pc;
     uint16_t next_anchor = 0;
     // Where the next anchored block starts. On the largest memories it may
     // wrap around 16 bits: anchors are then taken early, which is still
@@ -218,10 +218,10 @@ static bool walk_code(verifier *v, uint16_t reach)
 
         if (pc >= v->size) // the last instruction goes on past the end
             return reject(v->vm, v->code_end, vm_error_bytecode_bounds);
-        if (depth == 0)
-            last_empty = pc;
         while (next_anchor < v->anchor_count && next_anchor_start <= pc) {
-            v->anchors[next_anchor++] = last_empty;
+            v->anchors[2 * next_anchor] = pc;
+            v->anchors[2 * next_anchor + 1] = depth;
+            next_anchor++;
             next_anchor_start = (uint16_t)(next_anchor_start + v->anchor_spacing);
         }
         fault = fault_at(v, pc, depth);
@@ -238,13 +238,18 @@ static bool walk_code(verifier *v, uint16_t reach)
         step(v, &pc, &depth);
     }
     v->code_end = pc;
-    while (next_anchor < v->anchor_count)
-        v->anchors[next_anchor++] = last_empty;
+    // Blocks after the last instruction start hold no target: their anchor
+    // is the code's start, before any target.
+    for (; next_anchor < v->anchor_count; next_anchor++) {
+        v->anchors[2 * next_anchor] = v->code_start;
+        v->anchors[2 * next_anchor + 1] = 0;
+    }
     return true;
 }
 
 // Whether `target` is the start of an instruction of the code where the
-// stack is empty, walking from the anchor before it.
+// stack is empty, walking from the anchor of its block (which is at or
+// before it, or after it when it is not an instruction start).
 static bool is_empty_start(const verifier *v, uint16_t target)
 {
     uint16_t pc = v->code_start;
@@ -252,8 +257,12 @@ static bool is_empty_start(const verifier *v, uint16_t target)
 
     if (target < v->code_start || target >= v->code_end)
         return false;
-    if (v->anchor_count > 0)
-        pc = v->anchors[target / v->anchor_spacing];
+    if (v->anchor_count > 0) {
+        uint16_t anchor = (uint16_t)(target / v->anchor_spacing);
+
+        pc = v->anchors[2 * anchor];
+        depth = v->anchors[2 * anchor + 1];
+    }
     while (pc < target)
         step(v, &pc, &depth);
     return pc == target && depth == 0;
@@ -315,7 +324,7 @@ void vm_verify(vm_state *vm)
     v.code_start = table_size;
     v.code_end = table_size;
     v.anchors = (uint16_t *)vm->memory.stack;
-    v.anchor_count = vm->memory.stack_size;
+    v.anchor_count = vm->memory.stack_size / 2;
     // Every word below `size` has an anchor: spacing = size / count rounded
     // up, so count * spacing >= size.
     v.anchor_spacing = v.anchor_count > 0 ? (uint16_t)((v.size - 1u) / v.anchor_count + 1u) : 0;

@@ -330,21 +330,39 @@ TEST(Verifier, LooksOnlyAtCodeThatCanRun)
 // live in the stack memory, so every stack size must give the same verdicts.
 TEST(Verifier, GivesTheSameVerdictsWhateverTheStackSize)
 {
-    // A long program whose jumps reach far back and far forward, with one
-    // bad target at the very end, and its good twin.
+    // A long program whose jumps reach far back and far forward, with long
+    // expressions (the stack is not empty for dozens of words, across
+    // anchored positions), and one bad target at the very end or inside an
+    // expression; and its good twin.
     std::ostringstream code;
     code << "event init start\nevent 0 other\nstart:\n";
-    for (int i = 0; i < 60; i++)
+    for (int i = 0; i < 60; i++) {
         code << "L" << i << ": LOAD 40\nSMALL_IMMEDIATE " << i << "\nCONDITIONAL_BRANCH EQUAL L"
              << (i * 7) % 60 << "\nLARGE_IMMEDIATE 7\nSTORE 41\n";
+        if (i % 20 == 10) {
+            for (int j = 0; j < 30; j++)
+                code << (j == 15 ? "middle" + std::to_string(i) + ": " : "")
+                     << "SMALL_IMMEDIATE 1\n";
+            for (int j = 0; j < 29; j++)
+                code << "BINARY_ARITHMETIC ADD\n";
+            code << "STORE 42\n";
+        }
+    }
     code << "STOP\nother: JUMP last\nlast:\n";
     const std::string good = code.str() + "STOP\n";
     const std::string bad = code.str() + "JUMP 2\nLARGE_IMMEDIATE 1\nSTOP\n";
     const uint16_t bad_pc = static_cast<uint16_t>(test_support::assemble(bad).words.size() - 4);
+    const std::string into_expression = code.str() + "JUMP middle30\n";
+    const uint16_t into_pc =
+      static_cast<uint16_t>(test_support::assemble(into_expression).words.size() - 1);
     for (uint16_t stack : { 0, 1, 2, 3, 7, 32, 500, 1000 }) {
         SCOPED_TRACE("stack " + std::to_string(stack));
-        check_cases({ { "good", good, accepted, sizes(600, 64, stack) },
-                      { "bad", bad, { invalid_jump, bad_pc }, sizes(600, 64, stack) } });
+        check_cases({ { "good", good, accepted, sizes(1000, 64, stack) },
+                      { "bad", bad, { invalid_jump, bad_pc }, sizes(1000, 64, stack) },
+                      { "into an expression",
+                        into_expression,
+                        { invalid_jump, into_pc },
+                        sizes(1000, 64, stack) } });
     }
 }
 
