@@ -46,7 +46,7 @@ enum vm_opcode {
 #define VM_OPCODE_ENUM(name, code, words, stack, meaning) VM_OP_##name = code,
     VM_OPCODE_LIST(VM_OPCODE_ENUM)
 #undef VM_OPCODE_ENUM
-      VM_OP_INVALID = 0xF // never produced by a compiler: a run-time error
+      VM_OP_INVALID = 0xF // never produced by a compiler: the verifier refuses it
 };
 
 // Binary operators (bits 7..0 of BINARY_ARITHMETIC and CONDITIONAL_BRANCH):
