@@ -296,16 +296,20 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
 #undef VM_OPCODE_LABEL
           [VM_OP_INVALID] = &&unknown_bytecode,
     };
-    // The verifier admits operators below VM_BINARY_OPERATOR_COUNT only.
+    // The verifier admits operators below VM_BINARY_OPERATOR_COUNT only; the
+    // tables still cover every value of their index, so that a fault of the
+    // verifier could never send the loop elsewhere than to a label of its own.
 #define VM_OPERATOR_LABEL(name, expression) [VM_BINARY_##name] = &&arithmetic_##name,
-    static const void *const arithmetic_table[VM_BINARY_OPERATOR_COUNT] = {
+    static const void *const arithmetic_table[VM_OPERATOR_MASK + 1] = {
+        [VM_BINARY_OPERATOR_COUNT... VM_OPERATOR_MASK] = &&unknown_operator,
         [VM_BINARY_DIV] = &&arithmetic_DIV,
         [VM_BINARY_MOD] = &&arithmetic_MOD,
         VM_SIMPLE_BINARY_OPERATORS(VM_OPERATOR_LABEL)
     };
 #undef VM_OPERATOR_LABEL
 #define VM_OPERATOR_LABEL(name, expression) [VM_BINARY_##name] = &&branch_##name,
-    static const void *const branch_table[VM_BINARY_OPERATOR_COUNT] = {
+    static const void *const branch_table[VM_OPERATOR_MASK + 1] = {
+        [VM_BINARY_OPERATOR_COUNT... VM_OPERATOR_MASK] = &&unknown_operator,
         [VM_BINARY_DIV] = &&branch_DIV,
         [VM_BINARY_MOD] = &&branch_MOD,
         VM_SIMPLE_BINARY_OPERATORS(VM_OPERATOR_LABEL)

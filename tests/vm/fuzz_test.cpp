@@ -136,7 +136,9 @@ class CaseMaker
     }
 
     // A valid program whose instructions keep their kinds and lengths but
-    // get other operands: addresses, sizes, immediates, operators, event ids.
+    // get other operands: addresses, sizes, immediates, operators, natives,
+    // event ids; mostly in range, sometimes just past it, so that a verifier
+    // that let one through would have the loop meet it.
     std::vector<uint16_t> program_with_new_values()
     {
         std::vector<uint16_t> image = pool_[uniform(0, VALID_PROGRAM_POOL - 1)];
@@ -144,43 +146,45 @@ class CaseMaker
         for (size_t pc = image[0]; pc < image.size(); pc += vm_instruction_words(image[pc]))
             starts.push_back(pc);
         const int variables = vm_tests::RandomProgramLayout::VARIABLES;
+        const int beyond = chance(90) ? 0 : 8; // how far past its range a value may go
         for (int m = uniform(1, 6); m > 0; m--) {
             size_t pc =
               starts[static_cast<size_t>(uniform(0, static_cast<int>(starts.size()) - 1))];
             uint16_t opcode = image[pc] >> VM_OPCODE_SHIFT;
-            uint16_t operand = static_cast<uint16_t>(uniform(0, 0xFFF));
+            auto set_operand = [&](int operand) {
+                image[pc] = static_cast<uint16_t>(opcode << 12 | (operand & VM_OPERAND_MASK));
+            };
             switch (opcode) {
-            case VM_OP_SMALL_IMMEDIATE:
-            case VM_OP_NATIVE_CALL:
-                image[pc] =
-                  static_cast<uint16_t>(opcode << 12 | (chance(50) ? operand & 7 : operand));
+            case VM_OP_SMALL_IMMEDIATE: set_operand(uniform(0, 0xFFF)); break;
+            case VM_OP_NATIVE_CALL: // the harness' table has 4 natives
+                set_operand(uniform(0, test_support::NATIVE_YIELD - 1 + beyond));
                 break;
-            case VM_OP_EMIT: // an area that may end past the variables
-                image[pc] = static_cast<uint16_t>(opcode << 12 | operand);
-                image[pc + 1] = static_cast<uint16_t>(uniform(0, variables + 8));
-                image[pc + 2] = static_cast<uint16_t>(uniform(0, 40));
+            case VM_OP_EMIT:
+                set_operand(uniform(0, 0xFFF));
+                image[pc + 1] = static_cast<uint16_t>(uniform(0, variables + beyond));
+                image[pc + 2] = static_cast<uint16_t>(
+                  beyond ? uniform(VM_MAX_EVENT_WORDS - 4, VM_MAX_EVENT_WORDS + 4)
+                         : uniform(0, 40));
                 break;
             case VM_OP_LOAD:
-            case VM_OP_STORE:
-                image[pc] = static_cast<uint16_t>(opcode << 12 | uniform(0, variables - 1));
-                break;
+            case VM_OP_STORE: set_operand(uniform(0, variables - 1 + beyond)); break;
             case VM_OP_LARGE_IMMEDIATE:
                 image[pc + 1] = static_cast<uint16_t>(interesting_word());
                 break;
             case VM_OP_LOAD_INDIRECT:
             case VM_OP_STORE_INDIRECT: {
                 int base = uniform(0, variables);
-                image[pc] = static_cast<uint16_t>(opcode << 12 | base);
-                image[pc + 1] = static_cast<uint16_t>(uniform(0, variables - base));
+                set_operand(base);
+                image[pc + 1] = static_cast<uint16_t>(uniform(0, variables - base + beyond));
                 break;
             }
             case VM_OP_UNARY_ARITHMETIC:
-                image[pc] = static_cast<uint16_t>(opcode << 12 | uniform(0, VM_UNARY_NOT - 1));
+                set_operand(uniform(0, VM_UNARY_NOT - 1 + (beyond ? 2 : 0)));
                 break;
             case VM_OP_BINARY_ARITHMETIC:
             case VM_OP_CONDITIONAL_BRANCH:
-                image[pc] = static_cast<uint16_t>(opcode << 12 | uniform(0, 3) << 8 |
-                                                  uniform(0, VM_BINARY_OPERATOR_COUNT - 1));
+                set_operand(uniform(0, 3) << 8 |
+                            uniform(0, beyond ? 0xFF : VM_BINARY_OPERATOR_COUNT - 1));
                 break;
             default: break;
             }
