@@ -7,6 +7,7 @@
 // proves it on such a fault (dsp_fft_truncating_mutant.c).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>

@@ -5,16 +5,11 @@
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <optional>
 #include <sstream>
 
 #include "tests/support/assembler.hpp"
 #include "tests/support/vm_harness.hpp"
-
-extern "C" {
-#include "vm/vm_opcodes.h"
-}
 
 namespace
 {
