@@ -66,12 +66,13 @@ endef
 
 # $(1) = variant, $(2) = program, $(3) = output folder (bin or tests).
 # A program lists its own sources, the project libraries it uses (in link
-# order) and any system libraries.
+# order) and any system libraries; a project library names the system
+# libraries it needs itself (NAME_LDLIBS), added to every program using it.
 define PROGRAM_RULES
 $(BUILD)/$(1)/$(3)/$(2): $(call objects,$(1),$($(2)_SOURCES)) \
                          $(foreach l,$($(2)_LIBS),$(BUILD)/$(1)/lib/lib$(l).a)
 	@mkdir -p $$(@D)
-	$$(CXX) $$($(1)_FLAGS) $$^ $$($(2)_LDLIBS) -o $$@
+	$$(CXX) $$($(1)_FLAGS) $$^ $$($(2)_LDLIBS) $(sort $(foreach l,$($(2)_LIBS),$($(l)_LDLIBS))) -o $$@
 endef
 
 $(foreach v,$(VARIANTS),$(foreach l,$(LIBRARIES),$(eval $(call LIBRARY_RULES,$(v),$(l)))))
