@@ -35,6 +35,12 @@ constexpr const char *EMULATOR_SAFETY_SECONDS = "120";
 
 } // namespace
 
+std::string program_path(const std::string &name)
+{
+    std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
+    return (self.parent_path().parent_path() / "bin" / name).string();
+}
+
 uint16_t find_free_port()
 {
     int fd = socket(AF_INET, SOCK_STREAM, 0);
@@ -161,9 +167,9 @@ Emulator::Emulator(unsigned robots, const std::vector<std::string> &options)
     int output[2];
     if (pipe(output) != 0)
         throw std::runtime_error("pipe failed");
-    std::vector<std::string> arguments = { EMULATOR_PATH,          "--port",
-                                           std::to_string(port_),  "--robots",
-                                           std::to_string(robots), "--duration",
+    std::vector<std::string> arguments = { program_path("epuck-emu"), "--port",
+                                           std::to_string(port_),     "--robots",
+                                           std::to_string(robots),    "--duration",
                                            EMULATOR_SAFETY_SECONDS };
     arguments.insert(arguments.end(), options.begin(), options.end());
     pid_ = start(arguments, "", output[1], "", "/dev/null");
@@ -180,7 +186,7 @@ Emulator::Emulator(unsigned robots, const std::vector<std::string> &options)
             (count = read(output[0], buffer, sizeof buffer)) <= 0) {
             close(output[0]);
             stop_process(pid_);
-            throw std::runtime_error(std::string(EMULATOR_PATH) + " did not start (output: '" +
+            throw std::runtime_error(program_path("epuck-emu") + " did not start (output: '" +
                                      seen + "')");
         }
         seen.append(buffer, size_t(count));
@@ -222,7 +228,7 @@ BackgroundConsole::BackgroundConsole(const std::vector<std::string> &arguments,
       state_folder + "/console-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
     out_path_ = stem + ".out";
     err_path_ = stem + ".err";
-    std::vector<std::string> command{ CONSOLE_PATH };
+    std::vector<std::string> command{ program_path("aseba") };
     command.insert(command.end(), arguments.begin(), arguments.end());
     pid_ = start(command, state_folder, -1, out_path_, err_path_);
 }

@@ -20,10 +20,11 @@ namespace console_test
 
 using Milliseconds = std::chrono::milliseconds;
 
-// The programs under test, relative to the repository root (where the tests
-// run); the plain host build, as `make` produces them.
-inline constexpr const char *EMULATOR_PATH = "build/host/bin/epuck-emu";
-inline constexpr const char *CONSOLE_PATH = "build/host/bin/aseba";
+// A program under test (epuck-emu, aseba, asebac, epuck-image) of the same
+// build as the test itself: build/VARIANT/bin/NAME beside
+// build/VARIANT/tests/, so that `make test` builds each program once, with
+// the sanitizers.
+std::string program_path(const std::string &name);
 
 // A private temporary folder, removed with its content at the end.
 class ScratchFolder

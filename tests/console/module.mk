@@ -16,6 +16,8 @@ console_test_LIBS := aseba_client aseba_flash aseba_host_board aseba_compiler as
                      aseba_node aseba_vm
 console_test_LDLIBS := -lgtest -lgtest_main -pthread
 
-# The test starts the plain host builds of these programs (order-only: they
-# are run, not linked).
-$(BUILD)/host-sanitize/tests/console_test: | $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba
+# The test starts these programs of its own build (order-only: they are
+# run, not linked).
+CONSOLE_TEST_PROGRAMS := epuck-emu aseba asebac epuck-image
+$(foreach v,$(VARIANTS),$(eval \
+  $(BUILD)/$(v)/tests/console_test: | $(foreach p,$(CONSOLE_TEST_PROGRAMS),$(BUILD)/$(v)/bin/$(p))))

@@ -4,7 +4,8 @@
 // would (../shared/research/reference-tools.md), and observes the robots
 // with an independent protocol client (aseba_client.hpp).
 //
-// The emulator is taken from $EPUCK_EMU, by default build/host/bin/epuck-emu.
+// The emulator is taken from $EPUCK_EMU, by default the one of the test's own
+// build (build/host-sanitize/bin/epuck-emu under `make test`).
 
 #include "aseba_client.hpp"
 #include "interop_support.hpp"

@@ -8,6 +8,6 @@ interop_test_SOURCES := tests/interop/interop_test.cpp tests/interop/aseba_clien
 interop_test_LIBS := aseba_flash aseba_node
 interop_test_LDLIBS := -lgtest -lgtest_main -pthread
 
-# The test runs the plain host build of the emulator (order-only: it is a
-# program to start, not something to link).
-$(BUILD)/host-sanitize/tests/interop_test: | $(BUILD)/host/bin/epuck-emu
+# The test runs the emulator of its own build (order-only: it is a program
+# to start, not something to link).
+$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/tests/interop_test: | $(BUILD)/$(v)/bin/epuck-emu))
