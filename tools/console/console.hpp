@@ -24,6 +24,15 @@ class UsageError : public std::runtime_error
     using std::runtime_error::runtime_error;
 };
 
+// An input file that cannot be read or used (a program, an image): exit
+// status 2, as for bad usage, without the hint.
+class InputError : public std::runtime_error
+{
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// The exit statuses of every program (tools/command_line/command_line.hpp).
 constexpr int EXIT_FAILED = 1;
 constexpr int EXIT_USAGE = 2;
 
