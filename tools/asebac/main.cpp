@@ -82,18 +82,24 @@ void add_common_options(CLI::App &app, Options &options)
     app.add_option("FILE", options.input, "a script, or an .aesl project (- for standard input)")
       ->required()
       ->type_name("");
-    app.add_option("--target", options.target,
-                   "the node to compile for: epuck (default), dummy (the reference's\n"
-                   "asebadummynode), or a target description file\n"
-                   "(docs/target-description.md)")
+    app
+      .add_option("--target",
+                  options.target,
+                  "the node to compile for: epuck (default), dummy (the reference's\n"
+                  "asebadummynode), or a target description file\n"
+                  "(docs/target-description.md)")
       ->type_name("NAME|FILE");
-    app.add_option("--node", options.node,
-                   "in an .aesl project, the node whose program to take (default: the\n"
-                   "first one)")
+    app
+      .add_option("--node",
+                  options.node,
+                  "in an .aesl project, the node whose program to take (default: the\n"
+                  "first one)")
       ->type_name("NAME");
-    app.add_option("--event", options.event_options,
-                   "NAME[:SIZE]: declare a global event of SIZE words (default 0), for\n"
-                   "scripts; with run: NAME[:a,b,...], see above")
+    app
+      .add_option("--event",
+                  options.event_options,
+                  "NAME[:SIZE]: declare a global event of SIZE words (default 0), for\n"
+                  "scripts; with run: NAME[:a,b,...], see above")
       ->allow_extra_args(false)
       ->type_name("NAME[:SIZE]");
 }
@@ -107,15 +113,19 @@ Options parse_options(int argc, char **argv)
     app.footer(command_line::EXIT_STATUS_TEXT);
     app.fallthrough();
     add_common_options(app, options);
-    app.add_option("--constant", options.constant_options,
-                   "NAME=VALUE: declare a global constant (scripts only)")
+    app
+      .add_option("--constant",
+                  options.constant_options,
+                  "NAME=VALUE: declare a global constant (scripts only)")
       ->allow_extra_args(false)
       ->type_name("NAME=VALUE");
     app.add_option("-o", options.output, "write the bytecode to FILE (- for standard output)")
       ->type_name("FILE");
-    app.add_option("--format", options.format,
-                   "bytecode format: binary (16-bit little-endian words), hex (one\n"
-                   "0xXXXX word per line, the default) or c (a C array)")
+    app
+      .add_option("--format",
+                  options.format,
+                  "bytecode format: binary (16-bit little-endian words), hex (one\n"
+                  "0xXXXX word per line, the default) or c (a C array)")
       ->check(CLI::IsMember({ "binary", "hex", "c" }))
       ->type_name("FORMAT");
     app.add_flag("--listing", options.listing, "print the disassembly with source lines");
@@ -124,9 +134,11 @@ Options parse_options(int argc, char **argv)
     CLI::App *run = app.add_subcommand("run", "compile FILE and run it on the host VM");
     formatter->set_usage(run, "usage: asebac run [options] FILE", RUN_DESCRIPTION);
     add_common_options(*run, options);
-    run->add_option("--steps", options.steps,
-                    "instruction budget of init and of each event (default 10000); an\n"
-                    "event still running after it is reported as unfinished")
+    run
+      ->add_option("--steps",
+                   options.steps,
+                   "instruction budget of init and of each event (default 10000); an\n"
+                   "event still running after it is reported as unfinished")
       ->check(CLI::Range(1ul, 1000000000ul))
       ->type_name("N");
     // `asebac run` takes the file as its own argument.

@@ -2,6 +2,7 @@
 
 #include "byte_stream.hpp"
 
+#include <cerrno>
 #include <sys/ioctl.h>
 #include <termios.h>
 
@@ -78,7 +79,7 @@ void ByteStream::open_serial(const TargetAddress &address)
     asio::serial_port port(io_);
     std::error_code error;
     port.open(address.device, error);
-    if (error == std::errc::inappropriate_io_control_operation)
+    if (error.value() == ENOTTY) // the device answers no terminal request
         throw TransportError(name + ": not a serial device (" + address.device + ")");
     if (error)
         throw TransportError(name + ": cannot open " + address.device + ": " + error.message());
@@ -143,9 +144,9 @@ void ByteStream::async_open(const TargetAddress &address, Milliseconds timeout, 
         handler(failure.empty() ? failure : opening->name + ": " + failure);
     };
     auto reason = [opening](const std::error_code &error) {
-        return opening->timed_out ? "timed out after " + std::to_string(opening->timeout.count()) +
-                                      " ms"
-                                  : error.message();
+        return opening->timed_out
+                 ? "timed out after " + std::to_string(opening->timeout.count()) + " ms"
+                 : error.message();
     };
     opening->timer.expires_after(timeout);
     opening->timer.async_wait([opening](std::error_code error) {
@@ -168,14 +169,14 @@ void ByteStream::async_open(const TargetAddress &address, Milliseconds timeout, 
               finish("cannot resolve '" + host + "': " + reason(error));
               return;
           }
-          asio::async_connect(opening->socket,
-                              endpoints,
-                              [opening, finish, reason](std::error_code failed,
-                                                        const asio::ip::tcp::endpoint &) {
-                                  if (opening->cancelled)
-                                      return;
-                                  finish(failed ? "cannot connect: " + reason(failed) : "");
-                              });
+          asio::async_connect(
+            opening->socket,
+            endpoints,
+            [opening, finish, reason](std::error_code failed, const asio::ip::tcp::endpoint &) {
+                if (opening->cancelled)
+                    return;
+                finish(failed ? "cannot connect: " + reason(failed) : "");
+            });
       });
 }
 
@@ -183,7 +184,9 @@ namespace
 {
 
 // Runs `io` until `done` or `deadline`; false when the deadline came first.
-bool run_until(asio::io_context &io, const bool &done, std::chrono::steady_clock::time_point deadline)
+bool run_until(asio::io_context &io,
+               const bool &done,
+               std::chrono::steady_clock::time_point deadline)
 {
     while (!done) {
         if (io.stopped())

@@ -216,9 +216,9 @@ const Node &Network::described_node(NodeKey key) const
         throw NetworkError(description_problem(key));
     if (!found.compatible)
         throw NetworkError(found.label() + " speaks protocol " +
-                           std::to_string(found.protocol_version) + ", this tool speaks protocols " +
-                           std::to_string(MIN_PROTOCOL_VERSION) + " and " +
-                           std::to_string(PROTOCOL_VERSION));
+                           std::to_string(found.protocol_version) +
+                           ", this tool speaks protocols " + std::to_string(MIN_PROTOCOL_VERSION) +
+                           " and " + std::to_string(PROTOCOL_VERSION));
     return found;
 }
 
@@ -247,8 +247,8 @@ void Network::no_usable_node(const std::string &selector) const
     std::string known;
     for (const auto &[key, node] : nodes_) {
         known += (known.empty() ? "" : ", ") + node.label();
-        bool may_match = selector == "all" || !is_number(selector) ||
-                         std::to_string(key.id) == selector;
+        bool may_match =
+          selector == "all" || !is_number(selector) || std::to_string(key.id) == selector;
         if (!may_match)
             continue;
         std::string reason;
@@ -271,8 +271,8 @@ std::string Network::description_problem(NodeKey key) const
 {
     const Node &node = nodes_.at(key);
     std::string who = node.label() + " on " + target_name(key.target);
-    if (node.protocol_version > PROTOCOL_VERSION || (node.protocol_version != 0 &&
-                                                     node.protocol_version < MIN_PROTOCOL_VERSION))
+    if (node.protocol_version > PROTOCOL_VERSION ||
+        (node.protocol_version != 0 && node.protocol_version < MIN_PROTOCOL_VERSION))
         return who + " announced protocol " + std::to_string(node.protocol_version) +
                " and did not describe itself (this tool speaks protocols " +
                std::to_string(MIN_PROTOCOL_VERSION) + " and " + std::to_string(PROTOCOL_VERSION) +
@@ -284,8 +284,8 @@ std::string Network::description_problem(NodeKey key) const
     const Description &header = assembly->second.header;
     const TargetDescription &parts = assembly->second.parts;
     return who + " (" + header.name + ") did not finish describing itself within " +
-           std::to_string(answer_timeout_.count()) + " ms: " +
-           std::to_string(parts.named_variables.size()) + " of " +
+           std::to_string(answer_timeout_.count()) +
+           " ms: " + std::to_string(parts.named_variables.size()) + " of " +
            std::to_string(header.named_variables_count) + " named variables, " +
            std::to_string(parts.local_events.size()) + " of " +
            std::to_string(header.local_events_count) + " local events, " +

@@ -250,7 +250,7 @@ class Network
     // Handles what the links' handlers left: bytes, failures, openings.
     // Returns whether anything happened.
     bool process_links();
-    void link_went_down(size_t target, const std::string &reason);
+    void link_went_down(size_t target, std::string reason);
     void forget_nodes(size_t target);
     [[noreturn]] void no_usable_node(const std::string &selector) const;
     // Why node `key`, which answered, has no complete description.

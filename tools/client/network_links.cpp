@@ -144,7 +144,8 @@ void Network::start_reading(size_t target)
               link->failure = link->name + ": read failed: " + error.message();
               return;
           }
-          link->received.insert(link->received.end(), link->input.begin(), link->input.begin() + long(count));
+          link->received.insert(
+            link->received.end(), link->input.begin(), link->input.begin() + long(count));
           start_reading(target);
       });
 }
@@ -152,10 +153,11 @@ void Network::start_reading(size_t target)
 void Network::forget_nodes(size_t target)
 {
     std::erase_if(nodes_, [target](const auto &entry) { return entry.first.target == target; });
-    std::erase_if(assemblies_, [target](const auto &entry) { return entry.first.target == target; });
+    std::erase_if(assemblies_,
+                  [target](const auto &entry) { return entry.first.target == target; });
 }
 
-void Network::link_went_down(size_t target, const std::string &reason)
+void Network::link_went_down(size_t target, std::string reason)
 {
     Link &link = *links_.at(target);
     bool was_up = link.state == LinkState::up;

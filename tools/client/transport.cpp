@@ -90,13 +90,13 @@ class AsioTransport : public Transport
       : name_(target_text(address))
     {
         stream_.open(address, std::chrono::milliseconds(timeout_ms));
+        fd_ = stream_.native_handle();
         // Reads are ::read on the descriptor: it must not block.
-        int fd = stream_.native_handle();
-        fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
+        fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL) | O_NONBLOCK);
     }
     int fd() const override
     {
-        return const_cast<detail::ByteStream &>(stream_).native_handle();
+        return fd_;
     }
     std::string name() const override
     {
@@ -125,6 +125,7 @@ class AsioTransport : public Transport
     asio::io_context io_;
     detail::ByteStream stream_{ io_ };
     std::string name_;
+    int fd_ = -1;
 };
 
 } // namespace

@@ -54,7 +54,9 @@ class HelpFormatter : public CLI::Formatter
         return found->second + "\n";
     }
 
-    std::string make_help(const CLI::App *app, std::string name, CLI::AppFormatMode mode) const override
+    std::string make_help(const CLI::App *app,
+                          std::string name,
+                          CLI::AppFormatMode mode) const override
     {
         if (mode == CLI::AppFormatMode::Sub)
             return make_expanded(app);

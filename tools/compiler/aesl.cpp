@@ -86,7 +86,8 @@ class ProjectReader
             else if (name == "constant")
                 project.definitions.constants.push_back(constant(element));
             else if (name == "keywords")
-                project.show_keywords = std::string_view(element.attribute("flag").value()) != "false";
+                project.show_keywords =
+                  std::string_view(element.attribute("flag").value()) != "false";
             else if (name == "node")
                 project.nodes.push_back(node(element));
             // Other elements are ignored, as by every reader (aesl.md §2).

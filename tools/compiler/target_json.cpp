@@ -220,8 +220,8 @@ TargetReadResult read_target_json(std::string_view text_of_file)
     // Refuses absurd nesting while parsing, before any value is built.
     Json::parser_callback_t limit_depth = [](int depth, Json::parse_event_t, Json &) {
         if (depth > MAX_JSON_DEPTH)
-            throw DescriptionError("", "nested more than " + std::to_string(MAX_JSON_DEPTH) +
-                                         " levels deep");
+            throw DescriptionError(
+              "", "nested more than " + std::to_string(MAX_JSON_DEPTH) + " levels deep");
         return true;
     };
     try {

@@ -25,10 +25,9 @@ constexpr int PROGRESS_BAR_WIDTH = 30;
 constexpr Milliseconds PROGRESS_REDRAW{ 100 };
 constexpr Milliseconds NO_REBOOT_ENTER_TIMEOUT{ 10000 };
 
-// The pages of a Microchip HEX application image, checked whole as the
-// robots' bootloaders will check it (descriptor, CRC), so that no robot is
-// taken out of service for an image it would refuse. Throws InputError.
-std::vector<client::FlashPage> read_image(const std::string &path)
+} // namespace
+
+std::vector<client::FlashPage> read_flash_image(const std::string &path)
 {
     flash::ProgramImage image;
     try {
@@ -46,6 +45,9 @@ std::vector<client::FlashPage> read_image(const std::string &path)
           { page.number, std::vector<uint8_t>(page.bytes.begin(), page.bytes.end()) });
     return pages;
 }
+
+namespace
+{
 
 bool is_node_id(const std::string &selector)
 {
@@ -146,7 +148,7 @@ class ProgressBar
 int command_flash(Session &session)
 {
     const Options &options = session.options();
-    std::vector<client::FlashPage> pages = read_image(options.arguments[0]);
+    std::vector<client::FlashPage> pages = read_flash_image(options.arguments[0]);
     std::vector<std::string> silent;
     std::vector<NodeKey> nodes = flash_targets(session, silent);
     for (const std::string &id : silent)

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/client/flasher.hpp"
 #include "tools/client/network.hpp"
 
 namespace aseba::console
@@ -115,6 +116,12 @@ int command_monitor(Session &session);
 int command_save(Session &session);
 int command_reboot(Session &session);
 int command_flash(Session &session);
+
+// The pages of a Microchip HEX application image for `aseba flash`, checked
+// whole as the robots' bootloaders will check it (records, descriptor, CRC),
+// so that no robot is taken out of service for an image it would refuse.
+// Throws InputError.
+std::vector<client::FlashPage> read_flash_image(const std::string &path);
 
 // True once Ctrl-C was pressed (watch and monitor stop then).
 bool interrupted();

@@ -38,7 +38,8 @@ namespace
 
 const char *const USAGE = "usage: epuck-emu [options]";
 
-const char *const DESCRIPTION = R"(Runs simulated e-puck robots, each with the real firmware, as one Aseba
+const char *const DESCRIPTION =
+  R"(Runs simulated e-puck robots, each with the real firmware, as one Aseba
 network (protocol 5) that Aseba Studio, asebamassloader, asebacmd and the
 other Aseba tools reach over TCP, as they would reach real robots behind a
 Bluetooth switch.
@@ -104,62 +105,83 @@ Options parse_options(int argc, char **argv)
     app.add_option("--port", options.port, "TCP port of the network (default 33333)")
       ->check(CLI::Range(1, 65535).description(""))
       ->type_name("N");
-    app.add_option("--listen", options.listen_address,
-                   "the address to listen on (default 127.0.0.1, this computer only);\n"
-                   "0.0.0.0 or :: opens the robots to the network (see above)")
+    app
+      .add_option("--listen",
+                  options.listen_address,
+                  "the address to listen on (default 127.0.0.1, this computer only);\n"
+                  "0.0.0.0 or :: opens the robots to the network (see above)")
       ->type_name("ADDRESS");
-    app.add_option("--robot-ports", options.robot_ports,
-                   "also give each robot a port of its own, as each robot of the\n"
-                   "reference simulator has: robot i (from 0: node id i+1, or the\n"
-                   "arena file's i-th robot) listens on B+i too, where a tool is linked\n"
-                   "to it alone, as by Bluetooth: the tool hears that robot only and\n"
-                   "reaches that robot only, while the robot's frames still reach the\n"
-                   "whole network")
+    app
+      .add_option("--robot-ports",
+                  options.robot_ports,
+                  "also give each robot a port of its own, as each robot of the\n"
+                  "reference simulator has: robot i (from 0: node id i+1, or the\n"
+                  "arena file's i-th robot) listens on B+i too, where a tool is linked\n"
+                  "to it alone, as by Bluetooth: the tool hears that robot only and\n"
+                  "reaches that robot only, while the robot's frames still reach the\n"
+                  "whole network")
       ->check(CLI::Range(1, 65535).description(""))
       ->type_name("B");
-    CLI::Option *robots = app.add_option("--robots", options.robots,
-                                         "number of robots, node ids 1..N (default 1); in arena\n"
-                                         "mode, keep the file's first N robots or add robots on\n"
-                                         "free places up to N (default: the file's)")
+    CLI::Option *robots = app
+                            .add_option("--robots",
+                                        options.robots,
+                                        "number of robots, node ids 1..N (default 1); in arena\n"
+                                        "mode, keep the file's first N robots or add robots on\n"
+                                        "free places up to N (default: the file's)")
                             ->check(CLI::Range(1, 1000).description(""))
                             ->type_name("N");
-    app.add_option("--duration", options.duration_seconds,
-                   "stop after S seconds (simulated seconds in arena mode; default: run\n"
-                   "until interrupted)")
+    app
+      .add_option("--duration",
+                  options.duration_seconds,
+                  "stop after S seconds (simulated seconds in arena mode; default: run\n"
+                  "until interrupted)")
       ->check(CLI::Range(0.0, double(1u << 30)).description(""))
       ->type_name("S");
-    app.add_option("--load", options.load,
-                   "compile FILE (an .aesl project or a script) for the e-puck and start\n"
-                   "it on every robot, as if stored in the robots")
+    app
+      .add_option("--load",
+                  options.load,
+                  "compile FILE (an .aesl project or a script) for the e-puck and start\n"
+                  "it on every robot, as if stored in the robots")
       ->type_name("FILE");
-    app.add_option("--node", options.node,
-                   "in an .aesl project, the node whose program to load (default: the\n"
-                   "one named e-puck, else the first)")
+    app
+      .add_option("--node",
+                  options.node,
+                  "in an .aesl project, the node whose program to load (default: the\n"
+                  "one named e-puck, else the first)")
       ->type_name("NAME");
-    app.add_option("--firmware", options.firmware,
-                   "the application image (Microchip HEX with its descriptor, as `make\n"
-                   "dspic30` writes it) in every robot's flash at start (default: a\n"
-                   "placeholder image that the bootloader accepts)")
+    app
+      .add_option("--firmware",
+                  options.firmware,
+                  "the application image (Microchip HEX with its descriptor, as `make\n"
+                  "dspic30` writes it) in every robot's flash at start (default: a\n"
+                  "placeholder image that the bootloader accepts)")
       ->type_name("FILE");
-    app.add_option("--memory", options.memory_folder,
-                   "keep each robot's flash and EEPROM in DIR/robot-ID.mem: loaded at\n"
-                   "start when present, written at every flash or EEPROM write, so that\n"
-                   "stored programs and flashed images outlive the run, even a kill -9")
+    app
+      .add_option("--memory",
+                  options.memory_folder,
+                  "keep each robot's flash and EEPROM in DIR/robot-ID.mem: loaded at\n"
+                  "start when present, written at every flash or EEPROM write, so that\n"
+                  "stored programs and flashed images outlive the run, even a kill -9")
       ->type_name("DIR");
     app.add_flag("--quiet", options.quiet, "no status line");
-    app.add_option("--arena", options.arena,
-                   "run the arena described in FILE (docs/arena-format.md), or `default`\n"
-                   "for the paper's setup: a square arena with red, green and blue\n"
-                   "ground areas and 6 e-pucks")
+    app
+      .add_option("--arena",
+                  options.arena,
+                  "run the arena described in FILE (docs/arena-format.md), or `default`\n"
+                  "for the paper's setup: a square arena with red, green and blue\n"
+                  "ground areas and 6 e-pucks")
       ->type_name("FILE|default");
-    app.add_option("--seed", options.seed,
-                   "arena mode: seed of every random draw (default 1): the same arena,\n"
-                   "seed and program give the same run, bit for bit, while no tool sends\n"
-                   "frames")
+    app
+      .add_option("--seed",
+                  options.seed,
+                  "arena mode: seed of every random draw (default 1): the same arena,\n"
+                  "seed and program give the same run, bit for bit, while no tool sends\n"
+                  "frames")
       ->type_name("N");
     std::string speed = "max";
-    app.add_option("--speed", speed,
-                   "arena mode: `max` (as fast as possible, the default) or `realtime`")
+    app
+      .add_option(
+        "--speed", speed, "arena mode: `max` (as fast as possible, the default) or `realtime`")
       ->check(CLI::IsMember({ "max", "realtime" }))
       ->type_name("SPEED");
     bool headless = false; // there is no window to hide
@@ -231,8 +253,8 @@ class MemoryFiles
                 file->sync();
             return true;
         } catch (const std::exception &error) {
-            std::fprintf(stderr, "epuck-emu: %s; the robots' memories are no longer kept\n",
-                         error.what());
+            std::fprintf(
+              stderr, "epuck-emu: %s; the robots' memories are no longer kept\n", error.what());
             files_.clear();
             failed_ = true;
             return false;
@@ -263,7 +285,8 @@ void listen_robot_ports(const Options &options,
         fail("--robot-ports " + std::to_string(options.robot_ports) + " leaves no port for robot " +
              std::to_string(count));
     for (size_t i = 0; i < count; i++)
-        network.listen_robot(&board_at(i), uint16_t(options.robot_ports + i), options.listen_address);
+        network.listen_robot(
+          &board_at(i), uint16_t(options.robot_ports + i), options.listen_address);
 }
 
 // How the start-up line tells who may connect.

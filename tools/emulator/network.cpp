@@ -3,7 +3,12 @@
 
 #include "network.hpp"
 
+// Standalone asio, not Boost's. Its aligned allocation depends on a macro
+// the standard library defines only once one of its headers is in, so two
+// files could choose differently and free with the wrong function: use
+// operator new and delete everywhere.
 #define ASIO_STANDALONE
+#define ASIO_DISABLE_STD_ALIGNED_ALLOC
 #include <asio.hpp>
 
 #include <algorithm>
@@ -67,7 +72,8 @@ std::optional<Frame> FrameReader::next()
         return std::nullopt;
     Frame frame(start, start + length);
     consumed_ += length;
-    if (pending_.size() - consumed_ >= 2 && read_u16(pending_.data() + consumed_) > NODE_MAX_PAYLOAD)
+    if (pending_.size() - consumed_ >= 2 &&
+        read_u16(pending_.data() + consumed_) > NODE_MAX_PAYLOAD)
         broken_ = true;
     return frame;
 }
@@ -184,20 +190,21 @@ struct Network::State final : Bus {
 
     void accept(Listener &listener)
     {
-        listener.acceptor.async_accept([this, &listener](std::error_code error,
-                                                         asio::ip::tcp::socket socket) {
-            if (error == asio::error::operation_aborted)
-                return;
-            if (!error)
-                add_client(std::move(socket), listener.robot);
-            accept(listener);
-        });
+        listener.acceptor.async_accept(
+          [this, &listener](std::error_code error, asio::ip::tcp::socket socket) {
+              if (error == asio::error::operation_aborted)
+                  return;
+              if (!error)
+                  add_client(std::move(socket), listener.robot);
+              accept(listener);
+          });
     }
 
     void add_client(asio::ip::tcp::socket socket, Board *robot)
     {
         if (clients.size() >= MAX_CLIENTS) {
-            std::fprintf(stderr, "network: client refused: %zu clients are connected already\n",
+            std::fprintf(stderr,
+                         "network: client refused: %zu clients are connected already\n",
                          clients.size());
             return; // the socket closes as it goes
         }
@@ -389,7 +396,6 @@ struct Network::State final : Bus {
             }
         }
     }
-
 };
 
 Network::Network()
@@ -460,6 +466,17 @@ size_t Network::client_count() const
 uint64_t Network::frames_moved() const
 {
     return state_->frames_moved;
+}
+
+size_t Network::held_bytes() const
+{
+    size_t bytes = 0;
+    for (const auto &board : state_->boards)
+        for (const auto &[source, queue] : board->waiting)
+            bytes += queue.bytes;
+    for (const auto &client : state_->clients)
+        bytes += client->unsent.size() + client->sending.size();
+    return bytes;
 }
 
 uint64_t Network::frames_dropped() const

@@ -41,11 +41,11 @@ namespace aseba::host
 inline constexpr const char *LOOPBACK_ADDRESS = "127.0.0.1";
 
 // What one client may hold in the network (see the top of this file).
-inline constexpr size_t CLIENT_FRAMES_PER_ROBOT = 64;     // waiting for one robot
-inline constexpr size_t CLIENT_BYTES_PER_ROBOT = 4096;    // the same, in bytes
-inline constexpr size_t CLIENT_UNREAD_LIMIT = 1 << 20;    // waiting for the client to read
-inline constexpr size_t MAX_CLIENTS = 64;                 // connected at once
-inline constexpr size_t ROBOT_FRAMES_PER_ROBOT = 4096;    // from the robots, for one robot
+inline constexpr size_t CLIENT_FRAMES_PER_ROBOT = 64;  // waiting for one robot
+inline constexpr size_t CLIENT_BYTES_PER_ROBOT = 4096; // the same, in bytes
+inline constexpr size_t CLIENT_UNREAD_LIMIT = 1 << 20; // waiting for the client to read
+inline constexpr size_t MAX_CLIENTS = 64;              // connected at once
+inline constexpr size_t ROBOT_FRAMES_PER_ROBOT = 4096; // from the robots, for one robot
 
 using Frame = std::vector<uint8_t>;
 
@@ -105,6 +105,10 @@ class Network
     // ROBOT_FRAMES_PER_ROBOT of them waiting already (a robot flooding the
     // others, as a saturated radio would lose them).
     uint64_t frames_dropped() const;
+
+    // Bytes of frames the network holds now, waiting for boards and for
+    // clients: what its memory grows with, bounded by the limits above.
+    size_t held_bytes() const;
 
     // Whether a user event (type below 0x8000) that a board emits reaches the
     // other boards; on by default. Off cuts the robots' radio between

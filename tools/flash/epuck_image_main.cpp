@@ -87,7 +87,8 @@ int main(int argc, char **argv)
     Files files = parse_command_line(argc, argv);
     aseba::flash::ProgramImage application, bootloader;
     try {
-        application = aseba::flash::read_microchip_hex_file(files.application, BOOT_DESCRIPTOR_ADDRESS);
+        application =
+          aseba::flash::read_microchip_hex_file(files.application, BOOT_DESCRIPTOR_ADDRESS);
         bootloader = aseba::flash::read_microchip_hex_file(files.bootloader, BOOT_TINY_BASE);
         try {
             aseba::flash::add_application_descriptor(application);
@@ -110,9 +111,9 @@ int main(int argc, char **argv)
         flashable.instructions = application.instructions;
         write_file(files.output,
                    aseba::flash::write_microchip_hex(aseba::flash::fill_pages(flashable)));
-        write_file(files.factory,
-                   aseba::flash::write_microchip_hex(
-                     aseba::flash::merge_images(bootloader, application)));
+        write_file(
+          files.factory,
+          aseba::flash::write_microchip_hex(aseba::flash::merge_images(bootloader, application)));
     } catch (const std::exception &error) {
         std::cerr << "epuck-image: " << error.what() << "\n";
         return aseba::command_line::EXIT_FAILED;

@@ -324,13 +324,13 @@ void check_application_image(const ProgramImage &image)
                        hex_number(BOOT_CHECKED_START) + " to " + hex_number(written_end) + ")");
     if (entry < BOOT_APPLICATION_START || entry >= end || entry >= BOOT_ENTRY_LIMIT ||
         entry % pc_units_per_instruction != 0)
-        throw HexError("the descriptor's entry " + hex_number(entry) + " is not an even address in [" +
-                       hex_number(BOOT_APPLICATION_START) + ", " +
+        throw HexError("the descriptor's entry " + hex_number(entry) +
+                       " is not an even address in [" + hex_number(BOOT_APPLICATION_START) + ", " +
                        hex_number(std::min<uint32_t>(end, BOOT_ENTRY_LIMIT)) + ")");
     uint16_t computed = application_crc(image, end);
     if (crc != computed)
-        throw HexError("the descriptor's CRC is " + hex_number(crc) + " but the image's data give " +
-                       hex_number(computed) +
+        throw HexError("the descriptor's CRC is " + hex_number(crc) +
+                       " but the image's data give " + hex_number(computed) +
                        ": the bootloader would refuse it and the robots would stay in their "
                        "bootloaders");
 }

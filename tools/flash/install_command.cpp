@@ -76,20 +76,26 @@ std::unique_ptr<CLI::App> make_parser(InstallOptions &options)
     auto formatter = command_line::use_common_style(*app);
     formatter->set_usage(app.get(), usage);
     app->footer(exit_statuses);
-    app->add_option("--port", options.port,
-                    "the robot's serial device, such as /dev/rfcomm0 (Bluetooth) or a\n"
-                    "serial adapter's tty; opened at 115200 baud, raw 8N1")
+    app
+      ->add_option("--port",
+                   options.port,
+                   "the robot's serial device, such as /dev/rfcomm0 (Bluetooth) or a\n"
+                   "serial adapter's tty; opened at 115200 baud, raw 8N1")
       ->required()
       ->type_name("DEVICE");
-    app->add_option("--id", options.robot_id,
-                    "the robot number (0-65535) written at 0x017F36, in the Tiny\n"
-                    "Bootloader's first row; that row is rewritten at every\n"
-                    "installation, so give the robot's number to keep it (default 0)")
+    app
+      ->add_option("--id",
+                   options.robot_id,
+                   "the robot number (0-65535) written at 0x017F36, in the Tiny\n"
+                   "Bootloader's first row; that row is rewritten at every\n"
+                   "installation, so give the robot's number to keep it (default 0)")
       ->check(CLI::Range(0u, highest_robot_id).description(""))
       ->type_name("N");
-    app->add_option("--wait", options.wait_seconds,
-                    "how long to wait for the reset, more than 0 and at most 3600\n"
-                    "(default 30)")
+    app
+      ->add_option("--wait",
+                   options.wait_seconds,
+                   "how long to wait for the reset, more than 0 and at most 3600\n"
+                   "(default 30)")
       ->check(CLI::Range(0.001, longest_wait_seconds).description(""))
       ->type_name("SECONDS");
     app->add_option("FACTORY.hex", options.file, "the factory image")->required()->type_name("");
@@ -122,7 +128,7 @@ int install(const InstallOptions &options, std::ostream &out)
     uint32_t target = reset_target(image);
     if (target >= tiny_bootloader_base)
         throw InputError(options.file + ": its reset GOTO leads to " + hex(target) +
-                                 ", into the Tiny Bootloader itself, not to an image of ours");
+                         ", into the Tiny Bootloader itself, not to an image of ours");
 
     auto link = open_tiny_serial_link(options.port);
     TinyUploadSettings settings;
