@@ -161,9 +161,9 @@ std::string ScratchFolder::write(const std::string &name, const std::string &con
     return file;
 }
 
-Emulator::Emulator(unsigned robots, const std::vector<std::string> &options)
+Emulator::Emulator(unsigned robots, const std::vector<std::string> &options, uint16_t port)
 {
-    port_ = find_free_port();
+    port_ = port != 0 ? port : find_free_port();
     int output[2];
     if (pipe(output) != 0)
         throw std::runtime_error("pipe failed");
@@ -206,6 +206,15 @@ void Emulator::stop()
     pid_ = -1;
 }
 
+void Emulator::kill_now()
+{
+    if (pid_ > 0) {
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+    }
+    pid_ = -1;
+}
+
 std::string Emulator::target() const
 {
     return "tcp:localhost;" + std::to_string(port_);
@@ -219,8 +228,18 @@ CommandResult run_console(const std::vector<std::string> &arguments,
     return console.finish(limit);
 }
 
+CommandResult run_program(const std::string &program,
+                          const std::vector<std::string> &arguments,
+                          const std::string &state_folder,
+                          Milliseconds limit)
+{
+    BackgroundConsole running(arguments, state_folder, program);
+    return running.finish(limit);
+}
+
 BackgroundConsole::BackgroundConsole(const std::vector<std::string> &arguments,
-                                     const std::string &state_folder)
+                                     const std::string &state_folder,
+                                     const std::string &program)
   : folder_(state_folder)
 {
     static unsigned counter = 0;
@@ -228,7 +247,7 @@ BackgroundConsole::BackgroundConsole(const std::vector<std::string> &arguments,
       state_folder + "/console-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
     out_path_ = stem + ".out";
     err_path_ = stem + ".err";
-    std::vector<std::string> command{ program_path("aseba") };
+    std::vector<std::string> command{ program_path(program) };
     command.insert(command.end(), arguments.begin(), arguments.end());
     pid_ = start(command, state_folder, -1, out_path_, err_path_);
 }

@@ -11,6 +11,7 @@ console_test_SOURCES := tests/console/console_test.cpp tests/console/network_tes
                         tests/console/reference_test.cpp tests/console/flash_test.cpp \
                         tests/console/flasher_test.cpp \
                         tests/console/robot_ports_test.cpp \
+                        tests/console/command_line_test.cpp \
                         tests/console/console_support.cpp
 console_test_LIBS := aseba_client aseba_flash aseba_host_board aseba_compiler aseba_natives \
                      aseba_node aseba_vm

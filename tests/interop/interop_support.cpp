@@ -21,14 +21,6 @@ namespace interop
 namespace
 {
 
-// Where the tests find the emulator when EPUCK_EMU does not say: in the
-// same build as the running program (build/VARIANT/bin beside
-// build/VARIANT/tests, or the bin folder itself for a benchmark program).
-std::string default_emulator_path()
-{
-    std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
-    return (self.parent_path().parent_path() / "bin" / "epuck-emu").string();
-}
 constexpr const char *programs_folder = "tests/interop/programs/";
 // The emulator stops by itself after this long, in case everything else
 // failed to stop it; no test runs that long.
@@ -128,10 +120,19 @@ std::string program_path(const std::string &name)
     return programs_folder + name;
 }
 
+// build/VARIANT/bin beside build/VARIANT/tests, or the bin folder itself for
+// a benchmark program.
+std::string our_program_path(const std::string &name)
+{
+    std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
+    return (self.parent_path().parent_path() / "bin" / name).string();
+}
+
 EmulatedRobots::EmulatedRobots(const ScratchFolder &scratch, unsigned robots)
 {
     const char *configured = std::getenv("EPUCK_EMU");
-    std::string emulator = configured && *configured ? configured : default_emulator_path();
+    // Unless EPUCK_EMU says otherwise, the emulator of the same build.
+    std::string emulator = configured && *configured ? configured : our_program_path("epuck-emu");
     if (access(emulator.c_str(), X_OK) != 0)
         throw std::runtime_error(emulator + " is not an executable (build it with `make " +
                                  emulator + "` or set EPUCK_EMU)");
