@@ -2,7 +2,7 @@
 # (client_test), and `aseba` end to end against epuck-emu (console_test).
 TESTS += client_test
 client_test_SOURCES := tests/console/codec_test.cpp tests/console/client_units_test.cpp \
-                      tests/console/aesl_test.cpp
+                      tests/console/aesl_test.cpp tests/console/format_regressions_test.cpp
 client_test_LIBS := aseba_client aseba_compiler aseba_natives aseba_vm
 client_test_LDLIBS := -lgtest -lgtest_main -pthread
 

@@ -46,10 +46,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     try {
         aseba::console::Options options =
           aseba::console::parse_command_line(int(argv.size()), argv.data());
-        if (options.targets.empty())
-            fail("no target, not even the default");
         if (options.command == "help")
             aseba::console::help_text(options.arguments.empty() ? "" : options.arguments[0]);
+        else if (options.targets.empty())
+            fail("a command without a target, not even the default");
     } catch (const aseba::console::UsageError &) {
     } catch (...) {
         fail("an exception other than UsageError escaped the command line");

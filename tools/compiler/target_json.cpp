@@ -203,13 +203,13 @@ TargetDescription target_from(const Json &root)
     return target;
 }
 
-// "line L, column C: what" from nlohmann's "[json.exception...] parse error
-// at line L, column C: what".
-std::string syntax_error_text(const nlohmann::json::parse_error &error)
+// nlohmann's message without its "[json.exception.KIND.ID] " prefix: "parse
+// error at line L, column C: ...", "number overflow parsing '1e999'".
+std::string json_error_text(const nlohmann::json::exception &error)
 {
     std::string message = error.what();
-    size_t at = message.find("line ");
-    return at == std::string::npos ? message : message.substr(at);
+    size_t end_of_prefix = message.find("] ");
+    return end_of_prefix == std::string::npos ? message : message.substr(end_of_prefix + 2);
 }
 
 } // namespace
@@ -228,8 +228,9 @@ TargetReadResult read_target_json(std::string_view text_of_file)
         Json root = Json::parse(text_of_file.begin(), text_of_file.end(), limit_depth);
         result.target = target_from(root);
         result.ok = true;
-    } catch (const nlohmann::json::parse_error &error) {
-        result.error = syntax_error_text(error);
+    } catch (const nlohmann::json::exception &error) {
+        // Bad syntax, or a number out of every integer's range.
+        result.error = json_error_text(error);
     } catch (const DescriptionError &error) {
         result.error = error.what();
     }

@@ -14,7 +14,8 @@ namespace aseba
 struct TargetReadResult {
     bool ok = false;
     TargetDescription target;
-    // When !ok: "line L, column C: ..." for bad JSON, "PATH: ..." for a value
+    // When !ok: "parse error at line L, column C: ..." for bad JSON, "PATH:
+    // ..." for a value
     // the format does not allow (PATH as `natives[3].parameters[0].size`).
     std::string error;
 };
