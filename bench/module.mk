@@ -29,3 +29,13 @@ PROGRAMS += bench-node
 bench-node_SOURCES := bench/node_bench.cpp tests/interop/child_process.cpp \
                       tests/interop/interop_support.cpp
 bench-node_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
+
+# The tools and the simulated network under load (edit to running on six
+# robots, bursts of connections, a flood); epuck-emu and aseba are run, not
+# linked.
+PROGRAMS += bench-network
+bench-network_SOURCES := bench/network_bench.cpp tests/interop/child_process.cpp \
+                         tests/interop/interop_support.cpp
+bench-network_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
+$(foreach v,$(VARIANTS),$(eval \
+  $(BUILD)/$(v)/bin/bench-network: | $(BUILD)/$(v)/bin/epuck-emu $(BUILD)/$(v)/bin/aseba))

@@ -161,7 +161,9 @@ TEST_F(NetworkLimits, ABurstOfConnectionsIsAcceptedAtOnce)
     EXPECT_EQ(network.client_count(), burst);
 }
 
-TEST_F(NetworkLimits, ClientsBeyondTheLimitAreRefused)
+// Beyond MAX_CLIENTS, connections wait in the system's backlog, and are
+// taken as clients leave.
+TEST_F(NetworkLimits, ClientsBeyondTheLimitWaitTheirTurn)
 {
     std::vector<std::unique_ptr<ToolSocket>> tools;
     for (size_t i = 0; i < MAX_CLIENTS + 3; i++)
@@ -169,10 +171,16 @@ TEST_F(NetworkLimits, ClientsBeyondTheLimitAreRefused)
     for (int round = 0; round < 20; round++)
         network.service(service_wait_ms);
     EXPECT_EQ(network.client_count(), MAX_CLIENTS);
-    size_t closed = 0;
-    for (auto &tool : tools)
-        closed += tool->collect() ? 0 : 1;
-    EXPECT_EQ(closed, 3u);
+    // The last ones wait: what they send reaches no robot yet.
+    tools.back()->send(get_description_1);
+    for (int round = 0; round < 20; round++)
+        network.service(service_wait_ms);
+    EXPECT_FALSE(contains_frame(take_received(*robot_1), get_description_1));
+
+    tools.erase(tools.begin(), tools.begin() + 3);
+    EXPECT_TRUE(serve_until([&] { return robot_1->receive_count >= get_description_1.size(); }));
+    EXPECT_EQ(take_received(*robot_1), get_description_1);
+    EXPECT_EQ(network.client_count(), MAX_CLIENTS);
 }
 
 // asebacmd sends a command and hangs up at once: the command still reaches

@@ -143,6 +143,7 @@ struct Listener {
     }
     asio::ip::tcp::acceptor acceptor;
     Board *robot = nullptr;
+    bool accepting = false; // an accept is pending
 };
 
 } // namespace
@@ -188,8 +189,19 @@ struct Network::State final : Bus {
         return listener.acceptor.local_endpoint().port();
     }
 
+    size_t open_clients() const
+    {
+        return size_t(std::count_if(
+          clients.begin(), clients.end(), [](const auto &client) { return !client->closed; }));
+    }
+
+    // Accepts the next client, unless MAX_CLIENTS are connected: then new
+    // connections wait in the system's backlog until one leaves (sweep).
     void accept(Listener &listener)
     {
+        listener.accepting = open_clients() < MAX_CLIENTS;
+        if (!listener.accepting)
+            return;
         listener.acceptor.async_accept(
           [this, &listener](std::error_code error, asio::ip::tcp::socket socket) {
               if (error == asio::error::operation_aborted)
@@ -202,12 +214,6 @@ struct Network::State final : Bus {
 
     void add_client(asio::ip::tcp::socket socket, Board *robot)
     {
-        if (clients.size() >= MAX_CLIENTS) {
-            std::fprintf(stderr,
-                         "network: client refused: %zu clients are connected already\n",
-                         clients.size());
-            return; // the socket closes as it goes
-        }
         std::error_code ignored;
         // Hosts wait for each answer: do not let Nagle hold small frames.
         socket.set_option(asio::ip::tcp::no_delay(true), ignored);
@@ -284,6 +290,9 @@ struct Network::State final : Bus {
                                      clients.end(),
                                      [](const auto &client) { return client->closed; }),
                       clients.end());
+        for (auto &listener : listeners)
+            if (!listener->accepting)
+                accept(*listener);
     }
 
     std::shared_ptr<Client> client_numbered(uint64_t number) const

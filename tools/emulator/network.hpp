@@ -12,7 +12,9 @@
 // its sources in turn (the robots, then each client), a client may have only
 // a few frames waiting for any robot (then it is not read until they go, so
 // TCP slows it down), and a client that reads nothing while a megabyte waits
-// for it is dropped. Memory stays bounded whatever clients send.
+// for it is dropped. Beyond MAX_CLIENTS, new connections wait in the
+// system's backlog until a client leaves. Memory stays bounded whatever
+// clients send.
 //
 // A robot may also have ports of its own (listen_robot), as each robot of the
 // reference simulator has: a client there is like a tool linked to that robot
