@@ -16,7 +16,7 @@ declare -A groups=(
     [build]="make g++ gcc
              libpugixml-dev nlohmann-json3-dev libcli11-dev libasio-dev
              libenki-dev"
-    [test]="libgtest-dev python3 aseba libdashel-dev locales"
+    [test]="libgtest-dev python3 aseba libdashel-dev locales qemu-system-arm"
     [cross]="gcc-avr avr-libc binutils-avr gcc-arm-none-eabi libnewlib-arm-none-eabi"
     [fuzz]="clang libclang-rt-14-dev libpugixml-dev nlohmann-json3-dev libasio-dev aseba"
     [bench]="valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr
@@ -31,6 +31,7 @@ declare -A groups=(
 #   aseba, libdashel-dev, locales   the reference implementation, an oracle
 #                                   for tests and benchmarks only
 #   valgrind            instruction counts in benchmarks
+#   qemu-system-arm     the STM32F4 image's tests (QEMU netduinoplus2)
 
 wanted=("$@")
 [ ${#wanted[@]} -gt 0 ] || wanted=(build)

@@ -112,7 +112,7 @@ inline Bytes take_received(hal_board &robot)
 {
     Bytes received;
     for (uint16_t i = 0; i < robot.receive_count; i++)
-        received.push_back(robot.receive[(robot.receive_start + i) % HOST_LINK_RECEIVE_CAPACITY]);
+        received.push_back(robot.receive[(robot.receive_start + i) % sizeof robot.receive]);
     robot.receive_start = 0;
     robot.receive_count = 0;
     return received;

@@ -626,20 +626,29 @@ bool answers_as_node(AsebaClient &client, uint16_t robot, Milliseconds timeout)
     return client.receive_until(from_node(message::node_present, robot), timeout).has_value();
 }
 
+// `asebacmd whex ROBOT FILE reset`, which must report the write complete.
+void flash_with_asebacmd(const ScratchFolder &scratch,
+                         const EmulatedRobots &robots,
+                         uint16_t robot,
+                         const std::string &file)
+{
+    ToolRun run =
+      run_tool(scratch,
+               "asebacmd.log",
+               { "asebacmd", "-t", robots.target(), "whex", std::to_string(robot), file, "reset" },
+               tool_timeout);
+    EXPECT_TRUE(run.finished_in_time && run.exit_code == 0) << run.how_it_ended << "\n"
+                                                            << run.output;
+    EXPECT_NE(run.output.find("Write completed"), std::string::npos) << run.output;
+}
+
 TEST(Interop, AsebacmdWhexFlashesARobotThroughItsBootloader)
 {
     const uint16_t robot_count = 2, flashed = 2;
     ScratchFolder scratch;
     EmulatedRobots robots(scratch, robot_count);
     auto whex = [&](const std::string &file) {
-        ToolRun run = run_tool(
-          scratch,
-          "asebacmd.log",
-          { "asebacmd", "-t", robots.target(), "whex", std::to_string(flashed), file, "reset" },
-          tool_timeout);
-        EXPECT_TRUE(run.finished_in_time && run.exit_code == 0) << run.how_it_ended << "\n"
-                                                                << run.output;
-        EXPECT_NE(run.output.find("Write completed"), std::string::npos) << run.output;
+        flash_with_asebacmd(scratch, robots, flashed, file);
     };
 
     // A refused image: every page is acknowledged, but the bootloader finds
@@ -690,13 +699,7 @@ TEST(Interop, AsebacmdWhexFlashesTheImageEpuckImageWrites)
 
     EmulatedRobots robots(scratch, robot_count);
     auto whex = [&](const std::string &file) {
-        ToolRun run = run_tool(
-          scratch,
-          "asebacmd.log",
-          { "asebacmd", "-t", robots.target(), "whex", std::to_string(flashed), file, "reset" },
-          tool_timeout);
-        EXPECT_TRUE(run.finished_in_time && run.exit_code == 0) << run.how_it_ended << "\n"
-                                                                << run.output;
+        flash_with_asebacmd(scratch, robots, flashed, file);
     };
     whex(with_gaps);
     {

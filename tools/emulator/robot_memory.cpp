@@ -76,12 +76,15 @@ namespace
 {
 
 // host_board_save_memory's layout: EEPROM words (2 bytes each), then flash
-// instructions (3 bytes each), little-endian.
+// instructions (3 bytes each, 24 bits), little-endian.
+constexpr size_t eeprom_words = sizeof hal_board::eeprom / sizeof hal_board::eeprom[0];
+constexpr size_t flash_words = sizeof hal_board::flash / sizeof hal_board::flash[0];
 constexpr size_t eeprom_word_bytes = 2;
 constexpr size_t instruction_bytes = 3;
-constexpr size_t flash_offset = HAL_EEPROM_WORDS * eeprom_word_bytes;
-// Flash is compared and written a row at a time.
-constexpr size_t row_words = HAL_FLASH_ROW_INSTRUCTIONS;
+constexpr size_t flash_offset = eeprom_words * eeprom_word_bytes;
+// Flash is compared and written in pieces of this many instructions (a row
+// of the chip).
+constexpr size_t piece_words = 32;
 
 void put_instructions(const uint32_t *words, size_t count, uint8_t *bytes)
 {
@@ -102,8 +105,8 @@ MemoryFile::MemoryFile(const hal_board &board, std::string path)
     fd_ = open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     if (fd_ < 0)
         throw std::runtime_error(path_ + ": cannot be opened: " + std::strerror(errno));
-    std::vector<uint8_t> bytes(flash_offset + HOST_FLASH_WORDS * instruction_bytes);
-    for (size_t i = 0; i < HAL_EEPROM_WORDS; i++) {
+    std::vector<uint8_t> bytes(flash_offset + flash_words * instruction_bytes);
+    for (size_t i = 0; i < eeprom_words; i++) {
         bytes[i * eeprom_word_bytes] = uint8_t(eeprom_[i]);
         bytes[i * eeprom_word_bytes + 1] = uint8_t(eeprom_[i] >> 8);
     }
@@ -138,21 +141,22 @@ void MemoryFile::sync()
     if (board_.memory_operations == operations_seen_)
         return;
     operations_seen_ = board_.memory_operations;
-    for (size_t i = 0; i < HAL_EEPROM_WORDS; i++) {
+    for (size_t i = 0; i < eeprom_words; i++) {
         if (board_.eeprom[i] == eeprom_[i])
             continue;
         eeprom_[i] = board_.eeprom[i];
         uint8_t bytes[eeprom_word_bytes] = { uint8_t(eeprom_[i]), uint8_t(eeprom_[i] >> 8) };
         write_at(i * eeprom_word_bytes, bytes, sizeof bytes);
     }
-    for (size_t row = 0; row < HOST_FLASH_WORDS; row += row_words) {
-        size_t count = std::min(row_words, size_t(HOST_FLASH_WORDS) - row);
-        if (std::equal(board_.flash + row, board_.flash + row + count, flash_.begin() + long(row)))
+    for (size_t piece = 0; piece < flash_words; piece += piece_words) {
+        size_t count = std::min(piece_words, flash_words - piece);
+        const uint32_t *now = board_.flash + piece;
+        if (std::equal(now, now + count, flash_.begin() + long(piece)))
             continue;
-        std::copy(board_.flash + row, board_.flash + row + count, flash_.begin() + long(row));
-        uint8_t bytes[row_words * instruction_bytes];
-        put_instructions(flash_.data() + row, count, bytes);
-        write_at(flash_offset + row * instruction_bytes, bytes, count * instruction_bytes);
+        std::copy(now, now + count, flash_.begin() + long(piece));
+        uint8_t bytes[piece_words * instruction_bytes];
+        put_instructions(flash_.data() + piece, count, bytes);
+        write_at(flash_offset + piece * instruction_bytes, bytes, count * instruction_bytes);
     }
 }
 
