@@ -105,6 +105,7 @@ struct Board {
     hal_board *board = nullptr;
     FrameReader reader;
     std::map<uint64_t, SourceQueue> waiting;
+    size_t waiting_frames = 0; // in every queue
     uint64_t last_served = robots_source;
 };
 
@@ -312,6 +313,7 @@ struct Network::State final : Bus {
         }
         queue.frames.push_back(frame);
         queue.bytes += frame.size();
+        board.waiting_frames++;
         if (source != robots_source && !queue.full &&
             (queue.frames.size() >= CLIENT_FRAMES_PER_ROBOT ||
              queue.bytes >= CLIENT_BYTES_PER_ROBOT)) {
@@ -368,21 +370,27 @@ struct Network::State final : Bus {
         send_to_clients(nullptr, &from, frame);
     }
 
-    // The next source with frames for `board`, after the last one served.
+    // The next source with frames for `board`, after the last one served;
+    // end() when none has any.
     std::map<uint64_t, SourceQueue>::iterator next_source(Board &board)
     {
         auto found = board.waiting.upper_bound(board.last_served);
-        if (found == board.waiting.end())
-            found = board.waiting.begin();
-        return found;
+        for (size_t tried = 0; tried < board.waiting.size(); tried++, ++found) {
+            if (found == board.waiting.end())
+                found = board.waiting.begin();
+            if (!found->second.frames.empty())
+                return found;
+        }
+        return board.waiting.end();
     }
 
     // Feeds each link what it can hold, whole frames only, a frame from each
-    // source in turn.
+    // source in turn. Queues stay for the next frames (the robots' one
+    // always), but a departed client's goes once empty.
     void deliver_to_boards()
     {
         for (auto &board : boards) {
-            while (!board->waiting.empty()) {
+            while (board->waiting_frames > 0) {
                 auto source = next_source(*board);
                 SourceQueue &queue = source->second;
                 const Frame &frame = queue.frames.front();
@@ -390,17 +398,21 @@ struct Network::State final : Bus {
                     break;
                 queue.bytes -= frame.size();
                 queue.frames.pop_front();
+                board->waiting_frames--;
                 board->last_served = source->first;
+                if (source->first == robots_source)
+                    continue;
+                std::shared_ptr<Client> client = client_numbered(source->first);
                 bool now_room = queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
                                 queue.bytes < CLIENT_BYTES_PER_ROBOT;
                 if (queue.full && now_room) {
                     queue.full = false;
-                    if (auto client = client_numbered(source->first)) {
+                    if (client) {
                         client->full_queues--;
                         start_read(client);
                     }
                 }
-                if (queue.frames.empty())
+                if (!client && queue.frames.empty())
                     board->waiting.erase(source);
             }
         }
@@ -452,10 +464,9 @@ void Network::service(int timeout_ms)
     state.deliver_to_boards();
     if (state.io.stopped())
         state.io.restart();
+    // Waits for the first event if asked to, then handles what is ready.
     if (timeout_ms > 0)
         state.io.run_one_for(std::chrono::milliseconds(timeout_ms));
-    else
-        state.io.poll_one();
     for (int i = 0; i < max_events_per_service && state.io.poll_one() > 0; i++) {
     }
     state.sweep();
