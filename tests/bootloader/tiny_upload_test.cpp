@@ -281,7 +281,9 @@ TEST_P(TinyUploadPowerCut, ASecondInstallationSucceedsUnlessTheCutHitRow0sErase)
         auto link = aseba::flash::open_tiny_serial_link(robot.device());
         aseba::flash::TinyUploadSettings settings;
         settings.handshake_timeout = milliseconds(1000);
-        settings.reply_timeout = milliseconds(200);
+        // Short, so that the cut is noticed soon, yet long enough for a
+        // loaded machine running tests side by side.
+        settings.reply_timeout = milliseconds(1000);
         auto packets = aseba::flash::tiny_bootloader_packets(factory_image(), robot_number);
         try {
             aseba::flash::tiny_upload(*link, packets, settings);

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <sys/ioctl.h>
 #include <termios.h>
+#include <vector>
 
 namespace aseba::client::detail
 {
@@ -157,26 +158,36 @@ void ByteStream::async_open(const TargetAddress &address, Milliseconds timeout, 
         opening->resolver.cancel();
         opening->socket.close(ignored);
     });
+    auto connect = [opening, finish, reason](const auto &endpoints) {
+        asio::async_connect(
+          opening->socket,
+          endpoints,
+          [opening, finish, reason](std::error_code failed, const asio::ip::tcp::endpoint &) {
+              if (opening->cancelled)
+                  return;
+              finish(failed ? "cannot connect: " + reason(failed) : "");
+          });
+    };
+    // An address needs no resolver (whose thread takes time to start).
+    std::error_code not_an_address;
+    asio::ip::address ip = asio::ip::make_address(address.host, not_an_address);
+    if (!not_an_address) {
+        connect(std::vector<asio::ip::tcp::endpoint>{ { ip, address.port } });
+        return;
+    }
     std::string host = address.host;
     opening->resolver.async_resolve(
       host,
       std::to_string(address.port),
-      [opening, finish, reason, host](std::error_code error,
-                                      asio::ip::tcp::resolver::results_type endpoints) {
+      [opening, finish, reason, host, connect](std::error_code error,
+                                               asio::ip::tcp::resolver::results_type endpoints) {
           if (opening->cancelled)
               return;
           if (error) {
               finish("cannot resolve '" + host + "': " + reason(error));
               return;
           }
-          asio::async_connect(
-            opening->socket,
-            endpoints,
-            [opening, finish, reason](std::error_code failed, const asio::ip::tcp::endpoint &) {
-                if (opening->cancelled)
-                    return;
-                finish(failed ? "cannot connect: " + reason(failed) : "");
-            });
+          connect(endpoints);
       });
 }
 
