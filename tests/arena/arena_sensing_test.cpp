@@ -371,3 +371,66 @@ TEST(ArenaDeterminism, SameSeedSameRunBitForBit)
     }
     EXPECT_TRUE(seed_matters);
 }
+
+namespace
+{
+
+// The sound arena with starts drawn from the seed, selectors, a battery that
+// runs low and remote key presses, running the sound-direction example.
+struct InputsRun {
+    std::vector<Pose> poses;
+    std::vector<std::vector<int16_t>> variables;
+    std::vector<double> charges;
+};
+
+InputsRun run_every_input(uint32_t seed, const std::vector<uint16_t> &bytecode)
+{
+    Arena arena = read_arena_file("examples/sound.arena");
+    arena.battery.capacity_mah = 1;
+    for (size_t i = 0; i < arena.robots.size(); i++) {
+        arena.robots[i].selector = uint16_t(3 * i);
+        arena.robots[i].battery_charge = 0.06;
+    }
+    draw_start_positions(arena, seed);
+    ArenaSimulation simulation(arena, seed, bytecode);
+    simulation.run_for(1);
+    simulation.press_remote_key({ 0, 2 }, 0, 12);
+    simulation.set_selector(1, 7);
+    simulation.run_for(1);
+    InputsRun result;
+    for (size_t i = 0; i < simulation.robot_count(); i++) {
+        result.poses.push_back(simulation.world().pose(i));
+        const auto &words = simulation.firmware(i).variables.words;
+        result.variables.emplace_back(std::begin(words), std::end(words));
+        result.charges.push_back(simulation.world().battery(i).charge());
+    }
+    return result;
+}
+
+} // namespace
+
+TEST(ArenaDeterminism, SameSeedSameRunWithSoundSelectorsRemoteAndBattery)
+{
+    std::vector<uint16_t> program = compile("examples/sound-direction.aesl");
+    InputsRun first = run_every_input(5, program);
+    InputsRun second = run_every_input(5, program);
+    InputsRun other_seed = run_every_input(6, program);
+    bool seed_matters = false;
+    for (size_t i = 0; i < first.poses.size(); i++) {
+        EXPECT_EQ(std::memcmp(&first.poses[i], &second.poses[i], sizeof(Pose)), 0) << "robot " << i;
+        EXPECT_EQ(first.variables[i], second.variables[i]) << "robot " << i;
+        EXPECT_EQ(first.charges[i], second.charges[i]) << "robot " << i;
+        seed_matters |= first.variables[i] != other_seed.variables[i];
+    }
+    EXPECT_TRUE(seed_matters);
+    // The run did use the new inputs: recordings, a remote key, a selector
+    // and a battery run low (1 mAh from 6 %: 0.01 mAh in 0.3 s or less).
+    const epuck_named_variables &robot1 =
+      *reinterpret_cast<const epuck_named_variables *>(first.variables[0].data());
+    const epuck_named_variables &robot2 =
+      *reinterpret_cast<const epuck_named_variables *>(first.variables[1].data());
+    EXPECT_EQ(robot1.rc5[0], 12);
+    EXPECT_EQ(robot2.selector[0], 7);
+    EXPECT_EQ(robot1.battery[0], 0);
+    EXPECT_NE(std::count(std::begin(robot1.mic_samples0), std::end(robot1.mic_samples0), 0), 32);
+}

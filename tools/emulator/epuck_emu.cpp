@@ -20,8 +20,10 @@
 #include <string>
 #include <vector>
 
+#include "arena_control.hpp"
 #include "arena_file.hpp"
 #include "arena_simulation.hpp"
+#include "control_port.hpp"
 #include "network.hpp"
 #include "network_status.hpp"
 #include "robot_memory.hpp"
@@ -84,6 +86,13 @@ Arena mode (robots in a physical world, simulated by Enki):
                     no tool sends frames
   --speed S         `max` (as fast as possible, the default) or `realtime`
   --duration S      stop after S simulated seconds
+  --starts S        `placed` (where the arena file puts the robots, the
+                    default arena on its ring; the default) or `drawn`
+                    (positions and headings drawn from the seed, off the
+                    coloured areas)
+  --control P       take commands on loopback port P, one a line: turn a
+                    robot's selector, press a remote key for one robot or
+                    all, status (docs/arena-format.md, "Run-time control")
   --headless        accepted for compatibility: there is no window anyway
 
 Without --arena, the robots stand in a flat, empty world (no physics): their
@@ -114,6 +123,8 @@ struct Options {
     bool robots_given = false;
     uint32_t seed = 1;
     bool realtime = false;
+    bool drawn_starts = false;
+    uint16_t control_port = 0; // 0: none
 };
 
 [[noreturn]] void fail(const std::string &message)
@@ -165,6 +176,13 @@ Options parse_options(int argc, char **argv)
             if (speed != "max" && speed != "realtime")
                 fail("--speed is max or realtime, not '" + speed + "'");
             options.realtime = speed == "realtime";
+        } else if (argument == "--starts") {
+            std::string starts = value();
+            if (starts != "placed" && starts != "drawn")
+                fail("--starts is placed or drawn, not '" + starts + "'");
+            options.drawn_starts = starts == "drawn";
+        } else if (argument == "--control") {
+            options.control_port = uint16_t(parse_number("--control", value(), 1, 65535));
         } else if (argument == "--headless") {
             // There is no window to hide.
         } else if (argument == "--load") {
@@ -307,6 +325,8 @@ int run_arena(const Options &options,
             arena = aseba::arena::read_arena_file(options.arena);
         if (options.robots_given)
             aseba::arena::set_robot_count(arena, options.robots);
+        if (options.drawn_starts)
+            aseba::arena::draw_start_positions(arena, options.seed);
     } catch (const std::exception &error) {
         fail(error.what());
     }
@@ -328,6 +348,17 @@ int run_arena(const Options &options,
     } catch (const std::exception &error) {
         fail(error.what());
     }
+    std::unique_ptr<aseba::arena::ControlPort> control;
+    if (options.control_port != 0) {
+        try {
+            control = std::make_unique<aseba::arena::ControlPort>(
+              options.control_port, [&simulation](const std::string &line) {
+                  return aseba::arena::run_control_command(simulation, line);
+              });
+        } catch (const std::exception &error) {
+            fail(error.what());
+        }
+    }
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
 
@@ -346,6 +377,9 @@ int run_arena(const Options &options,
                 options.realtime ? "real-time" : "maximum",
                 options.load.empty() ? "" : ", running ",
                 options.load.c_str());
+    if (control)
+        std::printf("epuck-emu: control commands on 127.0.0.1 port %u, one a line (help)\n",
+                    unsigned(control->port()));
     std::fflush(stdout);
 
     const bool terminal = isatty(STDOUT_FILENO);
@@ -369,6 +403,8 @@ int run_arena(const Options &options,
               int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
             wall = wall_seconds();
         }
+        if (control)
+            control->service();
         if (!options.quiet && wall >= next_status) {
             next_status = wall + status_period;
             double factor = (simulation.seconds() - last_status_simulated) /
