@@ -10,8 +10,12 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <string>
+#include <tuple>
 
+#include "tools/compiler/program_file.hpp"
+#include "tools/compiler/target_presets.hpp"
 #include "tools/emulator/arena_control.hpp"
 #include "tools/emulator/control_port.hpp"
 
@@ -19,6 +23,8 @@ using namespace aseba::arena;
 
 namespace
 {
+
+constexpr double pi = 3.14159265358979323846;
 
 Arena three_robots()
 {
@@ -196,4 +202,48 @@ TEST(ControlPort, RefusesAPortInUse)
     ControlPort first(0, [](const std::string &) { return std::string("ok"); });
     EXPECT_THROW(ControlPort(first.port(), [](const std::string &) { return std::string("ok"); }),
                  std::runtime_error);
+}
+
+// examples/behaviours.aesl, the lesson the selector and the remote are for:
+// the selector chooses the behaviour, a digit key on the remote another.
+TEST(ArenaControl, LessonSwitchesBehavioursWithTheSelectorAndTheRemote)
+{
+    aseba::ProgramFile program = aseba::read_program_file("examples/behaviours.aesl", "");
+    std::string error;
+    aseba::CompileResult compiled =
+      aseba::compile_program_file(program, aseba::epuck_target(), error);
+    ASSERT_TRUE(compiled.ok) << error;
+    Arena arena;
+    arena.robots = { { 1, 50, 50, 0, 2 } }; // selector at 2: turn on the spot
+    ArenaSimulation simulation(arena, 1, compiled.bytecode);
+    auto moved = [&simulation](double seconds) {
+        simulation.run_for(0.2); // the key or the selector is taken
+        Pose before = simulation.world().pose(0);
+        simulation.run_for(seconds);
+        Pose after = simulation.world().pose(0);
+        return std::pair{ std::hypot(after.x - before.x, after.y - before.y),
+                          std::abs(std::remainder(after.heading - before.heading, 2 * pi)) };
+    };
+    auto [distance, turn] = moved(0.5);
+    EXPECT_LT(distance, 0.5);
+    EXPECT_GT(turn, 0.5) << "not turning";
+    EXPECT_EQ(variables(simulation, 0).leds[2], 1);
+
+    // Key 1: wander, at 500 steps/s (6.4 cm/s) in the open.
+    EXPECT_TRUE(starts_with(run_control_command(simulation, "rc5 1 1"), "ok"));
+    std::tie(distance, turn) = moved(1);
+    EXPECT_NEAR(distance, 6.4, 0.5);
+    EXPECT_EQ(variables(simulation, 0).leds[1], 1);
+
+    // Key 0: stop.
+    EXPECT_TRUE(starts_with(run_control_command(simulation, "rc5 1 0"), "ok"));
+    std::tie(distance, turn) = moved(0.5);
+    EXPECT_EQ(distance, 0);
+    EXPECT_EQ(turn, 0);
+    EXPECT_EQ(variables(simulation, 0).leds[0], 1);
+
+    // The selector turned to 1: wander again.
+    EXPECT_TRUE(starts_with(run_control_command(simulation, "selector 1 1"), "ok"));
+    std::tie(distance, turn) = moved(1);
+    EXPECT_NEAR(distance, 6.4, 0.5);
 }
