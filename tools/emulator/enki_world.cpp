@@ -111,8 +111,10 @@ struct EnkiWorld::RobotState {
     // firmware samples far more often than the world changes.
     uint16_t proximity_lit[EnkiEpuck::ir_count] = {};
     uint16_t acceleration[3] = { 0, 0, 0 };
-    // Where the microphones are during this step.
+    // Where the microphones are during this step, and how they hear the
+    // sound sources from there.
     std::array<Enki::Point, microphone_places.size()> microphones;
+    std::array<std::vector<Hearing>, microphone_places.size()> hearings;
     uint16_t selector = 0;
     RemoteReceiver remote;
     Battery battery{ BatteryModel{}, 1 };
@@ -147,8 +149,8 @@ uint16_t world_adc_read(void *context, uint8_t channel, uint64_t cycle)
         const SoundField &field = state.world->sound_field();
         if (field.silent())
             return HOST_FLAT_MICROPHONE;
-        const Enki::Point &place = state.microphones[channel - EPUCK_ADC_MICROPHONE_0];
-        return field.reading(place.x, place.y, double(cycle) / HOST_CYCLES_PER_SECOND);
+        return field.reading(state.hearings[channel - EPUCK_ADC_MICROPHONE_0],
+                             double(cycle) / HOST_CYCLES_PER_SECOND);
     }
     return HOST_FLAT_OTHER_INPUT;
 }
@@ -532,9 +534,11 @@ void EnkiWorld::place_microphones(RobotState &state)
 {
     const EnkiEpuck &robot = *robots_[state.index];
     Enki::Vector forward(std::cos(robot.angle), std::sin(robot.angle));
-    for (size_t i = 0; i < microphone_places.size(); i++)
+    for (size_t i = 0; i < microphone_places.size(); i++) {
         state.microphones[i] = robot.pos + forward * microphone_places[i].forward +
                                forward.perp() * microphone_places[i].left;
+        sound_field_.hear(state.microphones[i].x, state.microphones[i].y, state.hearings[i]);
+    }
 }
 
 uint64_t EnkiWorld::cycles() const

@@ -25,25 +25,29 @@ SoundField::SoundField(const std::vector<SoundSource> &sources)
 {
 }
 
-double SoundField::pressure(double x, double y, double seconds) const
+void SoundField::hear(double x, double y, std::vector<Hearing> &hearings) const
 {
-    double sum = 0;
+    hearings.clear();
     for (const SoundSource &source : sources_) {
         double distance = std::max(std::hypot(x - source.x, y - source.y), nearest_distance);
-        double emitted = seconds - distance / speed_of_sound;
-        if (!source.sounding(emitted))
-            continue;
-        double amplitude = source.level * SoundSource::reference_distance / distance;
-        // The tone's phase counts from its start, so that every beep of a
-        // source and every run begin alike.
-        sum += amplitude * std::sin(2 * pi * source.frequency * (emitted - source.start));
+        hearings.push_back(
+          { distance / speed_of_sound, source.level * SoundSource::reference_distance / distance });
     }
-    return sum;
 }
 
-uint16_t SoundField::reading(double x, double y, double seconds) const
+uint16_t SoundField::reading(const std::vector<Hearing> &hearings, double seconds) const
 {
-    double value = bias_counts + pressure(x, y, seconds);
+    double value = bias_counts;
+    for (size_t i = 0; i < sources_.size() && i < hearings.size(); i++) {
+        const SoundSource &source = sources_[i];
+        double emitted = seconds - hearings[i].delay;
+        if (!source.sounding(emitted))
+            continue;
+        // The tone's phase counts from its start, so that every run begins
+        // alike; in turns, less whole turns, so that sin stays quick.
+        double turns = source.frequency * (emitted - source.start);
+        value += hearings[i].amplitude * std::sin(2 * pi * (turns - std::floor(turns)));
+    }
     return uint16_t(std::clamp(std::round(value), 0.0, adc_maximum));
 }
 

@@ -34,6 +34,12 @@ constexpr std::array<MicrophonePlace, 3> microphone_places = { {
   { -2.305, 0 },    // 2: back
 } };
 
+// How a place hears one source: how late, and how loud.
+struct Hearing {
+    double delay;     // seconds: distance / speed_of_sound
+    double amplitude; // ADC counts: the source's level × reference distance / distance
+};
+
 class SoundField
 {
   public:
@@ -44,16 +50,17 @@ class SoundField
         return sources_.empty();
     }
 
-    // The sound pressure at (x, y) at time `seconds`, in ADC counts about the
-    // microphones' bias: each source's tone as it left the source
-    // distance / speed_of_sound earlier, scaled by its reference distance
-    // over the distance (at least the closest a microphone can get to a
-    // loudspeaker, 1 cm).
-    double pressure(double x, double y, double seconds) const;
+    // How (x, y) hears each source, in the sources' order, into `hearings`
+    // (a microphone moves only between world steps, while it is read
+    // thousands of times a second). Distances below 1 cm, the closest a
+    // microphone gets to a loudspeaker, count as 1 cm.
+    void hear(double x, double y, std::vector<Hearing> &hearings) const;
 
-    // What a microphone at (x, y) converts to at `seconds`: the bias (the
-    // middle of the 12-bit range) plus the pressure, rounded and clipped.
-    uint16_t reading(double x, double y, double seconds) const;
+    // What a microphone hearing the sources so converts to at `seconds`: the
+    // bias (the middle of the 12-bit range) plus each source's tone as it
+    // left the source `delay` earlier, times its amplitude; rounded and
+    // clipped to the ADC's range.
+    uint16_t reading(const std::vector<Hearing> &hearings, double seconds) const;
 
   private:
     std::vector<SoundSource> sources_;
