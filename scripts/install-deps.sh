@@ -13,6 +13,8 @@ packages=(
     aseba libdashel-dev locales                    # the reference implementation (tests only)
     valgrind                                       # instruction counts in benchmarks
     python3                                        # test and benchmark scripts
+    python3-matplotlib                             # the experiment's figure (experiments/)
+    libasio-dev                                    # sockets: epuck-emu's control port
     libenki-dev                                    # the simulated arena (physics, e-puck sensors)
 )
 
