@@ -14,12 +14,13 @@
 #include <string>
 #include <tuple>
 
-#include "tools/compiler/program_file.hpp"
-#include "tools/compiler/target_presets.hpp"
+#include "arena_test_support.hpp"
 #include "tools/emulator/arena_control.hpp"
 #include "tools/emulator/control_port.hpp"
 
 using namespace aseba::arena;
+using arena_test::compile;
+using arena_test::variables;
 
 namespace
 {
@@ -31,11 +32,6 @@ Arena three_robots()
     Arena arena;
     arena.robots = { { 1, 20, 50, 0 }, { 2, 50, 50, 0 }, { 3, 80, 50, 0 } };
     return arena;
-}
-
-const epuck_named_variables &variables(ArenaSimulation &simulation, size_t robot)
-{
-    return simulation.firmware(robot).variables.named;
 }
 
 bool starts_with(const std::string &text, const std::string &start)
@@ -208,14 +204,9 @@ TEST(ControlPort, RefusesAPortInUse)
 // the selector chooses the behaviour, a digit key on the remote another.
 TEST(ArenaControl, LessonSwitchesBehavioursWithTheSelectorAndTheRemote)
 {
-    aseba::ProgramFile program = aseba::read_program_file("examples/behaviours.aesl", "");
-    std::string error;
-    aseba::CompileResult compiled =
-      aseba::compile_program_file(program, aseba::epuck_target(), error);
-    ASSERT_TRUE(compiled.ok) << error;
     Arena arena;
     arena.robots = { { 1, 50, 50, 0, 2 } }; // selector at 2: turn on the spot
-    ArenaSimulation simulation(arena, 1, compiled.bytecode);
+    ArenaSimulation simulation(arena, 1, compile("examples/behaviours.aesl"));
     auto moved = [&simulation](double seconds) {
         simulation.run_for(0.2); // the key or the selector is taken
         Pose before = simulation.world().pose(0);

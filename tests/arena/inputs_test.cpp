@@ -10,33 +10,18 @@
 #include <cmath>
 #include <string>
 
-#include "tools/compiler/program_file.hpp"
-#include "tools/compiler/target_presets.hpp"
-#include "tools/emulator/arena_simulation.hpp"
+#include "arena_test_support.hpp"
 
 extern "C" {
 #include "hal/host/host_config.h"
 }
 
 using namespace aseba::arena;
+using arena_test::compile;
+using arena_test::variables;
 
 namespace
 {
-
-std::vector<uint16_t> compile(const std::string &path)
-{
-    aseba::ProgramFile program = aseba::read_program_file(path, "");
-    std::string error;
-    aseba::CompileResult result =
-      aseba::compile_program_file(program, aseba::epuck_target(), error);
-    EXPECT_TRUE(result.ok) << error;
-    return result.bytecode;
-}
-
-const epuck_named_variables &variables(ArenaSimulation &simulation, size_t robot)
-{
-    return simulation.firmware(robot).variables.named;
-}
 
 Arena robots_in_a_row(size_t count)
 {

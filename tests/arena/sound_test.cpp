@@ -11,11 +11,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "tools/compiler/program_file.hpp"
-#include "tools/compiler/target_presets.hpp"
-#include "tools/emulator/arena_simulation.hpp"
+#include "arena_test_support.hpp"
 
 using namespace aseba::arena;
+using arena_test::compile;
+using arena_test::variables;
 
 namespace
 {
@@ -26,16 +26,6 @@ constexpr double sound_speed = 34300; // cm/s
 // the robot's centre (cm), right, left and back.
 constexpr double microphone_forward[3] = { 0.835, 0.835, -2.305 };
 constexpr double microphone_left[3] = { -3.03, 3.03, 0 };
-
-std::vector<uint16_t> compile(const std::string &path)
-{
-    aseba::ProgramFile program = aseba::read_program_file(path, "");
-    std::string error;
-    aseba::CompileResult result =
-      aseba::compile_program_file(program, aseba::epuck_target(), error);
-    EXPECT_TRUE(result.ok) << error;
-    return result.bytecode;
-}
 
 struct Tone {
     double amplitude;

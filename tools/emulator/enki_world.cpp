@@ -566,11 +566,6 @@ const Battery &EnkiWorld::battery(size_t index) const
     return states_.at(index)->battery;
 }
 
-Enki::Point EnkiWorld::microphone_position(size_t index, unsigned microphone) const
-{
-    return states_.at(index)->microphones.at(microphone);
-}
-
 double EnkiWorld::shock_period_at(const Enki::Point &point) const
 {
     // The shortest period of the shock areas under the robot's centre.

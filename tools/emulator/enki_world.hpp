@@ -169,8 +169,6 @@ class EnkiWorld
     {
         return sound_field_;
     }
-    // Where robot `index`'s microphone `microphone` was at the last step.
-    Enki::Point microphone_position(size_t index, unsigned microphone) const;
 
     struct RobotState; // per robot: motor phases, emitters, camera registers
 

@@ -50,12 +50,13 @@ bool RemoteReceiver::level(uint64_t cycle) const
         if (cycle < frame.start || cycle >= frame.start + rc5_half_bit_cycles(frame_halves))
             continue;
         // The half bit `cycle` falls in: the last boundary at or before it.
-        unsigned half = unsigned((cycle - frame.start) * carrier_hz /
-                                 (carrier_periods_per_half * HOST_CYCLES_PER_SECOND));
-        while (half + 1 < frame_halves && rc5_half_bit_cycles(half + 1) <= cycle - frame.start)
+        // The division's quotient is that one, or one short where a boundary
+        // rounded down to the cycle itself.
+        uint64_t into = cycle - frame.start;
+        unsigned half =
+          unsigned(into * carrier_hz / (carrier_periods_per_half * HOST_CYCLES_PER_SECOND));
+        if (half + 1 < frame_halves && rc5_half_bit_cycles(half + 1) <= into)
             half++;
-        while (half > 0 && rc5_half_bit_cycles(half) > cycle - frame.start)
-            half--;
         bool one = (frame.bits >> (frame_bits - 1 - half / 2)) & 1u;
         bool second_half = half % 2 == 1;
         bool carrier = second_half == one;
