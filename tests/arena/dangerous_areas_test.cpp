@@ -172,26 +172,35 @@ TEST(DangerousAreas, AnnexWithLocalsDoesWhatTheAnnexDoes)
     EXPECT_GT(alarms, 0u) << "a run without alarms would not compare parts C to E";
 }
 
+namespace
+{
+
+// A 60 s run of two robots that spent `a` and `b` seconds on red.
+RunResult two_robots(Condition condition, uint32_t seed, double a, double b)
+{
+    RunResult result;
+    result.condition = condition;
+    result.seed = seed;
+    result.seconds = 60;
+    result.robots = { { .node_id = 1, .seconds_on_dangerous = a, .seconds_on_area = { a } },
+                      { .node_id = 2, .seconds_on_dangerous = b, .seconds_on_area = { b } } };
+    return result;
+}
+
+} // namespace
+
 TEST(DangerousAreasReport, SummaryIsTheMeanAndSpreadOfTheRunMeans)
 {
     // Two runs of two robots: run means 1 and 3, so mean 2 and s.d. √2.
-    auto run = [](uint32_t seed, double a, double b) {
-        RunResult result;
-        result.condition = both_on;
-        result.seed = seed;
-        result.seconds = 60;
-        result.robots = { { .node_id = 1, .seconds_on_dangerous = a, .seconds_on_area = { a } },
-                          { .node_id = 2, .seconds_on_dangerous = b, .seconds_on_area = { b } } };
-        return result;
-    };
-    std::vector<ConditionSummary> summaries = summarize({ run(1, 0.5, 1.5), run(2, 2, 4) });
+    std::vector<ConditionSummary> summaries =
+      summarize({ two_robots(both_on, 1, 0.5, 1.5), two_robots(both_on, 2, 2, 4) });
     ASSERT_EQ(summaries.size(), 1u);
     EXPECT_DOUBLE_EQ(summaries[0].mean, 2);
     EXPECT_DOUBLE_EQ(summaries[0].standard_deviation, std::sqrt(2.0));
     EXPECT_DOUBLE_EQ(summaries[0].minimum, 1);
     EXPECT_DOUBLE_EQ(summaries[0].maximum, 3);
 
-    std::string csv = csv_text({ run(1, 0.5, 1.5) }, { "red" });
+    std::string csv = csv_text({ two_robots(both_on, 1, 0.5, 1.5) }, { "red" });
     EXPECT_EQ(csv,
               "condition,communication,shocks,seed,duration,node_id,seconds_on_dangerous,"
               "seconds_on_red,events_emitted\n"
@@ -237,18 +246,9 @@ int markers_in_group(const std::string &svg, const std::string &id)
 // summary as the table.
 TEST(DangerousAreasReport, FigureIsDrawnFromTheCsv)
 {
-    auto run = [](Condition condition, uint32_t seed, double a, double b) {
-        RunResult result;
-        result.condition = condition;
-        result.seed = seed;
-        result.seconds = 60;
-        result.robots = { { .node_id = 1, .seconds_on_dangerous = a, .seconds_on_area = { a } },
-                          { .node_id = 2, .seconds_on_dangerous = b, .seconds_on_area = { b } } };
-        return result;
-    };
-    std::vector<RunResult> runs = { run(both_on, 1, 0.5, 1.5),
-                                    run(both_on, 2, 2, 4),
-                                    run(both_off, 1, 3, 5) };
+    std::vector<RunResult> runs = { two_robots(both_on, 1, 0.5, 1.5),
+                                    two_robots(both_on, 2, 2, 4),
+                                    two_robots(both_off, 1, 3, 5) };
     std::filesystem::path folder = std::filesystem::temp_directory_path() /
                                    ("dangerous-areas-plot-" + std::to_string(::getpid()));
     std::filesystem::create_directories(folder);
