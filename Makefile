@@ -50,6 +50,7 @@ TEST_DEPS_STAMP := $(BUILD)/.deps-test
 CROSS_DEPS_STAMP := $(BUILD)/.deps-cross
 FUZZ_DEPS_STAMP := $(BUILD)/.deps-fuzz
 BENCH_DEPS_STAMP := $(BUILD)/.deps-bench
+EXPERIMENT_DEPS_STAMP := $(BUILD)/.deps-experiment
 
 include $(sort $(wildcard */module.mk */*/module.mk))
 
@@ -120,7 +121,7 @@ test: $(TEST_BINARIES)
 	@scripts/run-tests.sh $(TEST_BINARIES)
 
 deps:
-	@scripts/install-deps.sh build test cross fuzz bench
+	@scripts/install-deps.sh build test cross fuzz bench experiment
 
 # The portable layers must build warning-free where `int` is 16 bits (the
 # dsPIC's case, here avr-gcc) and on a 32-bit microcontroller; they are

@@ -8,7 +8,9 @@
 // The first three variables are fixed by the VM (bytecode.md §7). The later
 // additions of the GCtronic firmware (§6.1: step counters, microphones,
 // selector, RC5, timer period, battery) come after the paper's thirteen, so
-// that the paper's names keep their addresses.
+// that the paper's names keep their addresses. Ours come last: the
+// microphones' recordings (drivers/epuck/epuck_microphones.h), for sound
+// localisation with the dsp.* natives.
 
 #ifndef EPUCK_DESCRIPTION_H
 #define EPUCK_DESCRIPTION_H
@@ -21,6 +23,10 @@
 // camLine at boot: where in the image the camera's line is, in percent of
 // its height (the GCtronic firmware's cam.line, §6.1).
 #define EPUCK_CAM_LINE_AT_BOOT 50
+
+// Readings of a microphone in one recording (EPUCK_MICROPHONE_RECORD_SAMPLES
+// of drivers/epuck/epuck_microphones.h, which checks that they agree).
+#define EPUCK_MIC_RECORD_WORDS 32
 
 // EPUCK_VARIABLE(identifier, "name", size in words), in memory order.
 #define EPUCK_VARIABLE_LIST(X)                                                                     \
@@ -43,13 +49,17 @@
     X(selector, "sel", 1)                                                                          \
     X(rc5, "rc5", 1)                                                                               \
     X(timer_period, "timer.period", 1)                                                             \
-    X(battery, "battery", 1)
+    X(battery, "battery", 1)                                                                       \
+    X(mic_samples0, "mic.samples0", EPUCK_MIC_RECORD_WORDS)                                        \
+    X(mic_samples1, "mic.samples1", EPUCK_MIC_RECORD_WORDS)                                        \
+    X(mic_samples2, "mic.samples2", EPUCK_MIC_RECORD_WORDS)
 
 // EPUCK_LOCAL_EVENT(identifier, "name", "description"), in id order: the i-th
 // has event id 0xFFFE - i.
 #define EPUCK_LOCAL_EVENT_LIST(X)                                                                  \
     X(ir_sensors, "ir_sensors", "new proximity and ambient values")                                \
     X(camera, "camera", "new camera line")                                                         \
-    X(timer, "timer", "timer.period milliseconds elapsed")
+    X(timer, "timer", "timer.period milliseconds elapsed")                                         \
+    X(microphones, "microphones", "new recordings in mic.samples0..2")
 
 #endif

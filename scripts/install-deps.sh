@@ -10,6 +10,7 @@
 #   cross  the cross compilers of `make cross-check`
 #   fuzz   clang and libFuzzer for `make fuzz`
 #   bench  valgrind and the reference Aseba for `make bench`
+#   experiment  matplotlib for the figure of `make experiment`
 set -euo pipefail
 
 declare -A groups=(
@@ -22,6 +23,7 @@ declare -A groups=(
     [fuzz]="clang libclang-rt-14-dev libpugixml-dev nlohmann-json3-dev libasio-dev aseba"
     [bench]="valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr
              gcc-arm-none-eabi libnewlib-arm-none-eabi simavr libsimavr-dev qemu-system-arm"
+    [experiment]="python3 python3-matplotlib"
 )
 # What each package is for:
 #   libpugixml-dev      .aesl projects (XML)

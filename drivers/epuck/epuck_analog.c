@@ -48,8 +48,12 @@ static void scan_finished(void *context, const uint16_t *values, uint8_t count)
         epuck_proximity_ambient_sampled(analog->proximity, values);
         break;
     case EPUCK_ANALOG_PROXIMITY_LIT: epuck_proximity_lit_sampled(analog->proximity, values); break;
-    default: epuck_microphones_sampled(analog->microphones, values); break;
+    default:
+        epuck_microphones_sampled(
+          analog->microphones, values, analog->previous == EPUCK_ANALOG_MICROPHONES);
+        break;
     }
+    analog->previous = analog->scanning;
     analog->count = (uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE);
     next = source_at((uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE));
     if (source_channels(analog, next) != source_channels(analog, analog->scanning))
@@ -71,6 +75,7 @@ bool epuck_analog_start(epuck_analog *analog,
     // then an ambient one.
     analog->count = COUNT_LIT_FINISHED;
     analog->scanning = EPUCK_ANALOG_MICROPHONES;
+    analog->previous = EPUCK_ANALOG_PROXIMITY_LIT;
     return epuck_board_adc_scan_start(board, EPUCK_MICROPHONE_CHANNELS, scan_finished, analog);
 }
 

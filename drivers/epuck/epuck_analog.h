@@ -38,6 +38,7 @@ typedef struct epuck_analog {
     epuck_microphones *microphones;
     uint8_t count;                // position in the cycle, 0..EPUCK_ANALOG_CYCLE-1
     epuck_analog_source scanning; // what the scan under way converts
+    epuck_analog_source previous; // what the scan before it converted
 } epuck_analog;
 
 // Starts the ADC scan feeding the three drivers (already initialised);

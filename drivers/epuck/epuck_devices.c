@@ -6,6 +6,10 @@
 #include "epuck_battery.h"
 #include "epuck_selector.h"
 
+// The firmware's recording variables hold one recording each.
+typedef char
+  recordings_fit_the_variables[EPUCK_MIC_RECORD_WORDS == EPUCK_MICROPHONE_RECORD_SAMPLES ? 1 : -1];
+
 void epuck_robot_start(epuck_robot *robot, hal_board *board)
 {
     // The analog scan's first second and a half calibrates the proximity
@@ -41,11 +45,16 @@ uint16_t epuck_robot_sense(epuck_robot *robot, epuck_named_variables *named)
     uint8_t toggle;
     uint8_t address;
     uint8_t command;
+    int16_t *const recordings[EPUCK_MICROPHONE_COUNT] = { named->mic_samples0,
+                                                          named->mic_samples1,
+                                                          named->mic_samples2 };
 
     if (epuck_proximity_take(&robot->proximity, named->prox, named->ambient))
         events |= 1u << EPUCK_EVENT_ir_sensors;
     epuck_accelerometer_read(&robot->accelerometer, named->acc);
     epuck_microphones_read(&robot->microphones, named->mic);
+    if (epuck_microphones_take_recording(&robot->microphones, recordings))
+        events |= 1u << EPUCK_EVENT_microphones;
     if (epuck_camera_capture(
           &robot->camera, named->cam_line[0], named->cam_red, named->cam_green, named->cam_blue))
         events |= 1u << EPUCK_EVENT_camera;

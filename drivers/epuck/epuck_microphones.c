@@ -1,4 +1,5 @@
-// Microphone volume: running minimum and maximum over a window.
+// Microphone volume: running minimum and maximum over a window; recordings
+// of consecutive readings.
 
 #include "epuck_microphones.h"
 
@@ -21,12 +22,46 @@ void epuck_microphones_init(epuck_microphones *microphones, hal_board *board)
     for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
         microphones->volume[i] = 0;
     start_window(microphones);
+    microphones->recorded = 0;
+    microphones->until_next = 0;
+    microphones->recording_now = false;
+    microphones->recording_full = false;
 }
 
-void epuck_microphones_sampled(epuck_microphones *microphones, const uint16_t *values)
+static void record(epuck_microphones *microphones, const uint16_t *values, bool follows_previous)
 {
     uint8_t i;
 
+    if (microphones->until_next > 0)
+        microphones->until_next--;
+    if (!microphones->recording_now) {
+        // The main loop has not taken the last one yet, or it is too soon.
+        if (microphones->recording_full || microphones->until_next > 0)
+            return;
+        microphones->recording_now = true;
+        microphones->recorded = 0;
+        microphones->until_next = EPUCK_MICROPHONE_RECORD_INTERVAL;
+    } else if (!follows_previous) {
+        // Another channel was converted meanwhile: the readings would not
+        // be one scan apart.
+        microphones->recorded = 0;
+    }
+    for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
+        microphones->recording[i][microphones->recorded] = values[i];
+    microphones->recorded++;
+    if (microphones->recorded == EPUCK_MICROPHONE_RECORD_SAMPLES) {
+        microphones->recording_now = false;
+        microphones->recording_full = true;
+    }
+}
+
+void epuck_microphones_sampled(epuck_microphones *microphones,
+                               const uint16_t *values,
+                               bool follows_previous)
+{
+    uint8_t i;
+
+    record(microphones, values, follows_previous);
     for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++) {
         if (values[i] < microphones->window_min[i])
             microphones->window_min[i] = values[i];
@@ -50,4 +85,36 @@ void epuck_microphones_read(epuck_microphones *microphones, int16_t *volume)
     for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
         volume[i] = (int16_t)microphones->volume[i];
     hal_critical_leave(microphones->board, state);
+}
+
+bool epuck_microphones_take_recording(epuck_microphones *microphones,
+                                      int16_t *const recordings[EPUCK_MICROPHONE_COUNT])
+{
+    hal_critical_state state = hal_critical_enter(microphones->board);
+    bool full = microphones->recording_full;
+    uint8_t i;
+    uint16_t n;
+
+    if (full) {
+        for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
+            for (n = 0; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++)
+                recordings[i][n] = (int16_t)microphones->recording[i][n];
+        microphones->recording_full = false;
+    }
+    hal_critical_leave(microphones->board, state);
+    if (!full)
+        return false;
+    // Readings are 12-bit, so 32 of them sum well within 32 bits.
+    for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++) {
+        int32_t sum = 0;
+        int16_t mean;
+
+        for (n = 0; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++)
+            sum += recordings[i][n];
+        mean = (int16_t)((sum + (int32_t)(EPUCK_MICROPHONE_RECORD_SAMPLES / 2u)) /
+                         (int32_t)EPUCK_MICROPHONE_RECORD_SAMPLES);
+        for (n = 0; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++)
+            recordings[i][n] = (int16_t)(recordings[i][n] - mean);
+    }
+    return true;
 }

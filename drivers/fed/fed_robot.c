@@ -11,6 +11,7 @@ void epuck_robot_start(epuck_robot *robot, hal_board *board)
     robot->board = board;
     robot->next_proximity_ms = now + FED_ROBOT_PROXIMITY_PERIOD_MS;
     robot->next_camera_ms = now + FED_ROBOT_CAMERA_PERIOD_MS;
+    robot->next_microphones_ms = now + FED_ROBOT_MICROPHONES_PERIOD_MS;
 }
 
 void epuck_robot_actuate(epuck_robot *robot, epuck_named_variables *named)
@@ -41,5 +42,7 @@ uint16_t epuck_robot_sense(epuck_robot *robot, epuck_named_variables *named)
         events |= 1u << EPUCK_EVENT_ir_sensors;
     if (due(&robot->next_camera_ms, now, FED_ROBOT_CAMERA_PERIOD_MS))
         events |= 1u << EPUCK_EVENT_camera;
+    if (due(&robot->next_microphones_ms, now, FED_ROBOT_MICROPHONES_PERIOD_MS))
+        events |= 1u << EPUCK_EVENT_microphones;
     return events;
 }

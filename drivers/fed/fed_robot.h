@@ -14,14 +14,17 @@
 
 // The e-puck raises ir_sensors when a full set of the four IR pairs is in
 // (about 63 times a second, drivers/epuck/epuck_analog.h) and camera at most
-// every 50 ms (drivers/epuck/epuck_camera.c).
-#define FED_ROBOT_PROXIMITY_PERIOD_MS 16u
-#define FED_ROBOT_CAMERA_PERIOD_MS    50u
+// every 50 ms (drivers/epuck/epuck_camera.c), microphones for each
+// recording (about every 65 ms, drivers/epuck/epuck_microphones.h).
+#define FED_ROBOT_PROXIMITY_PERIOD_MS   16u
+#define FED_ROBOT_CAMERA_PERIOD_MS      50u
+#define FED_ROBOT_MICROPHONES_PERIOD_MS 65u
 
 struct epuck_robot {
     hal_board *board;
     uint32_t next_proximity_ms;
     uint32_t next_camera_ms;
+    uint32_t next_microphones_ms;
 };
 
 #endif

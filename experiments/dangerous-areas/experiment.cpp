@@ -110,6 +110,7 @@ RunResult run_condition(const arena::Arena &arena,
     RunResult result;
     result.condition = condition;
     result.seed = seed;
+    result.seconds = double(steps) * arena::EnkiWorld::step_seconds;
     for (size_t robot = 0; robot < robots; robot++) {
         RobotTimes times;
         times.node_id = arena.robots[robot].node_id;

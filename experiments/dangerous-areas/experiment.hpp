@@ -49,10 +49,11 @@ struct RobotTimes {
     unsigned events_emitted = 0;         // user events (the annex's alarms) sent
 };
 
-// One run: the condition, the seed and every robot's times.
+// One run: the condition, the seed, its duration and every robot's times.
 struct RunResult {
     Condition condition;
     uint32_t seed = 0;
+    double seconds = 0; // whole world steps
     std::vector<RobotTimes> robots;
 };
 

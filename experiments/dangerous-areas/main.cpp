@@ -1,8 +1,8 @@
 // dangerous-areas: the 2007 Aseba paper's Fig. 5 experiment in the simulated
 // arena. Runs the paper's controller on every robot of the arena under the
 // four conditions (robots' radio on or off, shocks on or off) for a number
-// of seeds, and writes the time each robot spent on dangerous colours (CSV),
-// a figure (SVG) and a summary table (docs/experiment.md).
+// of seeds, and writes the time each robot spent on dangerous colours (CSV)
+// and a summary table (docs/experiment.md); plot.py draws the figure.
 
 #include <chrono>
 #include <cstdio>
@@ -23,14 +23,17 @@ const char usage[] = R"(Usage: dangerous-areas [OPTIONS]
 Runs the dangerous-area experiment of the 2007 Aseba paper (its Fig. 5) in
 the simulated arena: PROGRAM on every robot, under the four conditions
 (communication between robots on/off x shocks on/off) for seeds 1..N, each
-run DURATION simulated seconds at full speed with no TCP port open. The areas
-that shock robots in the arena count as dangerous in every condition; the
-time a robot's centre is on one is measured after every 10 ms world step.
+run DURATION simulated seconds at full speed with no TCP port open. Each seed
+draws the robots' start positions and headings (off the coloured areas), the
+same for the four conditions, and seeds the noise. The areas that shock
+robots in the arena count as dangerous in every condition; the time a
+robot's centre is on one is measured after every 10 ms world step.
 
-Writes OUT/dangerous-areas.csv (one line per run and robot) and
-OUT/dangerous-areas.svg (the figure), prints a line per run and the summary
-table (Markdown), and with --doc puts the table into that file between the
-lines <!-- begin dangerous-areas table --> and <!-- end dangerous-areas table -->.
+Writes OUT/dangerous-areas.csv (one line per run and robot), prints a line
+per run and the summary table (Markdown), and with --doc puts the table into
+that file between the lines <!-- begin dangerous-areas table --> and
+<!-- end dangerous-areas table -->. The figure is drawn from the CSV by
+experiments/dangerous-areas/plot.py (matplotlib; `make experiment` runs it).
 
 Options:
   --out DIR         folder of the CSV and the figure (default docs/experiment)
@@ -44,6 +47,9 @@ Options:
   --shock-period S  knock robots on dangerous areas every S seconds, the
                     first after S seconds on one (default: the arena's,
                     0.25 s in the default arena)
+  --starts S        `drawn` (from each seed, the default) or `placed` (where
+                    the arena puts the robots: the default arena's ring,
+                    the same for every run)
   -h, --help        show this help
 )";
 
@@ -55,6 +61,7 @@ struct Options {
     std::string program = "examples/paper-annex.aesl";
     std::string arena = "default";
     double shock_period = 0; // 0: the arena's
+    bool drawn_starts = true;
 };
 
 [[noreturn]] void fail(const std::string &message)
@@ -99,6 +106,11 @@ Options parse_options(int argc, char **argv)
             options.shock_period = std::strtod(text.c_str(), &end);
             if (*end != '\0' || !(options.shock_period > 0))
                 fail("--shock-period wants a positive number of seconds, not '" + text + "'");
+        } else if (argument == "--starts") {
+            std::string starts = value();
+            if (starts != "drawn" && starts != "placed")
+                fail("--starts is drawn or placed, not '" + starts + "'");
+            options.drawn_starts = starts == "drawn";
         } else if (argument == "--program") {
             options.program = value();
         } else if (argument == "--arena") {
@@ -150,7 +162,14 @@ int main(int argc, char **argv)
     for (const Condition &condition : conditions) {
         for (uint32_t seed = 1; seed <= options.seeds; seed++) {
             auto start = clock::now();
-            RunResult run = run_condition(arena, condition, seed, options.duration, bytecode);
+            aseba::arena::Arena seeded = arena;
+            try {
+                if (options.drawn_starts)
+                    aseba::arena::draw_start_positions(seeded, seed);
+            } catch (const std::exception &error) {
+                fail(error.what());
+            }
+            RunResult run = run_condition(seeded, condition, seed, options.duration, bytecode);
             double wall = std::chrono::duration<double>(clock::now() - start).count();
             double sum = 0;
             unsigned events = 0;
@@ -177,19 +196,14 @@ int main(int argc, char **argv)
     if (error)
         fail("cannot create " + options.out + ": " + error.message());
     const std::string csv_path = options.out + "/dangerous-areas.csv";
-    const std::string svg_path = options.out + "/dangerous-areas.svg";
     write_file(csv_path, csv_text(runs, area_names(arena)));
-    std::vector<ConditionSummary> summaries = summarize(runs);
-    char title[160];
-    std::snprintf(title,
-                  sizeof title,
-                  "Time on the dangerous colour: %zu robots, %u runs of %g s per condition",
-                  arena.robots.size(),
-                  options.seeds,
-                  options.duration);
-    write_file(svg_path, svg_figure(summaries, options.duration, title));
-    const std::string table = markdown_table(summaries, options.duration);
-    std::printf("\n%s\nwrote %s and %s\n", table.c_str(), csv_path.c_str(), svg_path.c_str());
+    const std::string table = markdown_table(summarize(runs), options.duration);
+    std::printf(
+      "\n%s\nwrote %s (the figure: /usr/bin/python3 experiments/dangerous-areas/plot.py %s "
+      "FIGURE.svg)\n",
+      table.c_str(),
+      csv_path.c_str(),
+      csv_path.c_str());
 
     if (!options.doc.empty()) {
         std::ifstream file(options.doc, std::ios::binary);

@@ -1,5 +1,6 @@
-// The dangerous-area experiment's outputs: the CSV of every robot's times,
-// the per-condition summary as a Markdown table, and the figure as SVG.
+// The dangerous-area experiment's outputs: the CSV of every robot's times
+// and the per-condition summary as a Markdown table. The figure is drawn
+// from the CSV by plot.py (matplotlib).
 
 #pragma once
 
@@ -15,9 +16,9 @@ namespace aseba::experiment
 // "green", "blue"), with its number appended when two would share a name.
 std::vector<std::string> area_names(const arena::Arena &arena);
 
-// One line per run and robot: condition, communication, shocks, seed, node
-// id, seconds on dangerous areas, seconds on each area (`area_names`) and
-// user events emitted, after a header line.
+// One line per run and robot: condition, communication, shocks, seed, the
+// run's duration, node id, seconds on dangerous areas, seconds on each area
+// (`area_names`) and user events emitted, after a header line.
 std::string csv_text(const std::vector<RunResult> &runs,
                      const std::vector<std::string> &area_names);
 
@@ -38,13 +39,6 @@ std::vector<ConditionSummary> summarize(const std::vector<RunResult> &runs);
 
 // The summaries as a Markdown table; `seconds` is the runs' duration.
 std::string markdown_table(const std::vector<ConditionSummary> &summaries, double seconds);
-
-// The figure: per condition a bar at the mean of the run means with a
-// standard-deviation whisker, each run's mean as a dot and each robot as a
-// small grey dot; `seconds` is the runs' duration, `title` goes on top.
-std::string svg_figure(const std::vector<ConditionSummary> &summaries,
-                       double seconds,
-                       const std::string &title);
 
 // Puts `block` between the lines `<!-- begin NAME -->` and `<!-- end NAME
 // -->` of `document`, replacing what was there; false when the markers are

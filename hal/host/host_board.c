@@ -39,15 +39,30 @@ uint64_t host_board_cycles(const hal_board *board)
     return board->cycles;
 }
 
-// The earliest due event at or before `until`: -1 none, EPUCK_TIMER_COUNT the
-// ADC scan, else a timer.
+// What falls due next: an ADC scan, a timer, or a change of the inputs.
+#define EVENT_NONE         (-1)
+#define EVENT_ADC_SCAN     EPUCK_TIMER_COUNT
+#define EVENT_INPUT_CHANGE (EPUCK_TIMER_COUNT + 1)
+
+static bool any_input_watched(const hal_board *board)
+{
+    uint16_t pin;
+
+    for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
+        if (board->edge_callback[pin])
+            return true;
+    return false;
+}
+
+// The earliest due event at or before `until`: EVENT_NONE, EVENT_ADC_SCAN,
+// EVENT_INPUT_CHANGE, else a timer.
 static int16_t next_event(const hal_board *board, uint64_t until, uint64_t *due)
 {
-    int16_t chosen = -1;
+    int16_t chosen = EVENT_NONE;
     int16_t i;
 
     if (board->adc_scan_mask != 0 && board->adc_next_due <= until) {
-        chosen = EPUCK_TIMER_COUNT;
+        chosen = EVENT_ADC_SCAN;
         *due = board->adc_next_due;
     }
     for (i = 0; i < EPUCK_TIMER_COUNT; i++) {
@@ -55,6 +70,13 @@ static int16_t next_event(const hal_board *board, uint64_t until, uint64_t *due)
         if (timer->running && timer->next_due <= until && (chosen < 0 || timer->next_due < *due)) {
             chosen = i;
             *due = timer->next_due;
+        }
+    }
+    if (board->world->next_input_change && any_input_watched(board)) {
+        uint64_t change = board->world->next_input_change(board->world->context, board->cycles);
+        if (change > board->cycles && change <= until && (chosen < 0 || change < *due)) {
+            chosen = EVENT_INPUT_CHANGE;
+            *due = change;
         }
     }
     return chosen;
@@ -68,11 +90,16 @@ void host_board_advance(hal_board *board, uint64_t cycles)
     uint64_t until = board->cycles + cycles;
     uint64_t due = 0;
     int16_t event;
+    uint16_t pin;
 
-    while ((event = next_event(board, until, &due)) >= 0) {
+    while ((event = next_event(board, until, &due)) != EVENT_NONE) {
         board->cycles = due;
-        if (event == EPUCK_TIMER_COUNT) {
+        if (event == EVENT_ADC_SCAN) {
             host_board_run_adc_scan(board);
+        } else if (event == EVENT_INPUT_CHANGE) {
+            for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
+                if (board->edge_callback[pin])
+                    host_board_input_changed(board, (epuck_pin)pin);
         } else {
             host_periodic *timer = &board->timers[event];
             timer->next_due += timer->period;

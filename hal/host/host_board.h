@@ -91,8 +91,10 @@ void host_board_set_world(hal_board *board, const host_world *world);
 void host_board_set_time(hal_board *board, uint32_t milliseconds);
 
 // Moves the clock forward by `cycles` processor cycles, calling every timer
-// and ADC-scan callback that falls due at its time, earliest first (at equal
-// times: the ADC scan, then the timers in epuck_timer order).
+// and ADC-scan callback that falls due at its time, and signalling the
+// edges of watched input pins at the cycles the world says they may change,
+// earliest first (at equal times: the ADC scan, the timers in epuck_timer
+// order, then the inputs).
 void host_board_advance(hal_board *board, uint64_t cycles);
 
 // Processor cycles since start (HOST_CYCLES_PER_SECOND a second).

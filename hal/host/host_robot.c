@@ -2,19 +2,32 @@
 
 #include "host_robot.h"
 
+#include "bootloader/bytecode_store.h"
+#include "drivers/epuck/epuck_selector.h"
+
 void host_robot_init(host_robot *robot,
                      uint16_t node_id,
                      void (*link_output)(void *context, const uint8_t *bytes, uint16_t count),
                      void *link_context)
 {
     host_board_init(&robot->board, link_output, link_context);
-    robot->node_id = node_id;
+    robot->given_node_id = node_id;
+    host_robot_update_node_id(robot);
     robot->mode = HOST_ROBOT_IN_BOOTLOADER;
     robot->resets = 0;
 }
 
+void host_robot_update_node_id(host_robot *robot)
+{
+    // As the chip's entry points (hal/dspic30/dspic30_application_main.c).
+    robot->node_id = robot->given_node_id != HOST_ROBOT_NODE_ID_AT_BOOT
+                       ? robot->given_node_id
+                       : epuck_store_node_id(&robot->board, epuck_selector_read(&robot->board));
+}
+
 void host_robot_start_application(host_robot *robot)
 {
+    host_robot_update_node_id(robot);
     robot->mode = HOST_ROBOT_IN_APPLICATION;
     epuck_firmware_init(&robot->firmware, &robot->board, &robot->devices, robot->node_id);
 }
@@ -24,6 +37,7 @@ void host_robot_reset(host_robot *robot)
     host_board_reset(&robot->board);
     robot->resets++;
     robot->mode = HOST_ROBOT_IN_BOOTLOADER;
+    host_robot_update_node_id(robot);
     boot_start(&robot->loader, &robot->board, robot->node_id);
 }
 

@@ -24,9 +24,15 @@ typedef enum host_robot_mode {
     HOST_ROBOT_IN_APPLICATION
 } host_robot_mode;
 
+// host_robot_init's node id for a robot that decides at each start, as the
+// chip does: the node id in its stored settings, else its selector's
+// (bootloader/bytecode_store.h, epuck_store_node_id).
+#define HOST_ROBOT_NODE_ID_AT_BOOT 0u
+
 typedef struct host_robot {
     hal_board board;
-    uint16_t node_id; // the bootloader's and the firmware's
+    uint16_t given_node_id; // host_robot_init's
+    uint16_t node_id;       // the bootloader's and the firmware's since the last start
     host_robot_mode mode;
     uint32_t resets; // since power-on
     bootloader loader;
@@ -36,6 +42,7 @@ typedef struct host_robot {
 
 // Prepares the board (flat world, link output to `link_output`, memories
 // erased) without powering on: install an image and place the robot first.
+// `node_id` is the id the robot answers to, or HOST_ROBOT_NODE_ID_AT_BOOT.
 void host_robot_init(host_robot *robot,
                      uint16_t node_id,
                      void (*link_output)(void *context, const uint8_t *bytes, uint16_t count),
@@ -45,6 +52,10 @@ void host_robot_init(host_robot *robot,
 // valid application and waited out its second: what a simulator wants at
 // start, whatever the flash holds.
 void host_robot_start_application(host_robot *robot);
+
+// Works out node_id again as a start would (after the world or the memories
+// changed, before power-on).
+void host_robot_update_node_id(host_robot *robot);
 
 // Resets the chip: peripherals stop and the bootloader starts.
 void host_robot_reset(host_robot *robot);

@@ -30,7 +30,14 @@ typedef struct host_world {
     bool (*i2c_read)(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count);
     // Byte `index` the camera sends on row `row` of its window.
     uint8_t (*camera_byte)(void *context, uint16_t row, uint16_t index, uint64_t cycle);
+    // The first cycle after `after_cycle` at which an input pin may change
+    // level (HOST_NO_INPUT_CHANGE: none foreseen), so that the board signals
+    // an edge at the cycle it happens, as the chip's edge interrupt would
+    // (the remote's INT0). NULL for a world whose inputs keep their levels.
+    uint64_t (*next_input_change)(void *context, uint64_t after_cycle);
 } host_world;
+
+#define HOST_NO_INPUT_CHANGE UINT64_MAX
 
 // Neutral values of the flat world.
 #define HOST_FLAT_MICROPHONE      2048u          // silence: the middle of the range

@@ -31,9 +31,47 @@ TEST(ArenaFile, ReadsEveryStatement)
     EXPECT_EQ(arena.obstacles[0].heading_degrees, 30);
     EXPECT_EQ(arena.obstacles[1].shape, Obstacle::Shape::cylinder);
     EXPECT_EQ(arena.obstacles[1].color.blue, 1);
-    ASSERT_EQ(arena.robots.size(), 2u);
+    ASSERT_EQ(arena.sounds.size(), 2u);
+    EXPECT_EQ(arena.sounds[0].x, 60);
+    EXPECT_EQ(arena.sounds[0].frequency, 1000);
+    EXPECT_EQ(arena.sounds[0].level, 500);
+    EXPECT_EQ(arena.sounds[0].start, 0);
+    EXPECT_EQ(arena.sounds[0].stop, SoundSource::never);
+    EXPECT_EQ(arena.sounds[1].frequency, 440);
+    EXPECT_EQ(arena.sounds[1].start, 2);
+    EXPECT_EQ(arena.sounds[1].stop, 30);
+    EXPECT_EQ(arena.sounds[1].beep_on, 0.5);
+    EXPECT_EQ(arena.sounds[1].beep_off, 1.5);
+    EXPECT_EQ(arena.battery.capacity_mah, 1200);
+    EXPECT_EQ(arena.battery.idle_ma, 100);
+    EXPECT_EQ(arena.battery.motor_ma, 160);
+    ASSERT_EQ(arena.robots.size(), 3u);
     EXPECT_EQ(arena.robots[0].node_id, 3);
+    EXPECT_EQ(arena.robots[0].selector, 0);
+    EXPECT_EQ(arena.robots[0].battery_charge, 1);
     EXPECT_EQ(arena.robots[1].heading_degrees, -45);
+    EXPECT_EQ(arena.robots[1].selector, 12);
+    EXPECT_EQ(arena.robots[1].battery_charge, 0.4);
+    EXPECT_EQ(arena.robots[2].node_id, RobotPlacement::node_id_from_selector);
+    EXPECT_EQ(arena.robots[2].selector, 3);
+    EXPECT_EQ(arena.robots[2].battery_charge, 0.05);
+}
+
+TEST(ArenaFile, SoundsFollowTheirSchedule)
+{
+    Arena arena = read_arena_file("tests/arena/data/every-statement.arena");
+    const SoundSource &always = arena.sounds[0], &beeper = arena.sounds[1];
+    EXPECT_TRUE(always.sounding(0));
+    EXPECT_TRUE(always.sounding(1e6));
+    // On from 2 s for 0.5 s every 2 s, until 30 s.
+    EXPECT_FALSE(beeper.sounding(1.99));
+    EXPECT_TRUE(beeper.sounding(2));
+    EXPECT_TRUE(beeper.sounding(2.49));
+    EXPECT_FALSE(beeper.sounding(2.51));
+    EXPECT_FALSE(beeper.sounding(3.99));
+    EXPECT_TRUE(beeper.sounding(4.2));
+    EXPECT_TRUE(beeper.sounding(28.1));
+    EXPECT_FALSE(beeper.sounding(30.1));
 }
 
 TEST(ArenaFile, GroundColourIsTheLastAreaContainingThePoint)
@@ -77,7 +115,33 @@ INSTANTIATE_TEST_SUITE_P(
                   BadArena{ "size 100 100 7\n", "unexpected '7'" },
                   BadArena{ "size 100 100\nteleport 1\n", "unknown statement" },
                   BadArena{ "size 100 100\narea disc 1 2 3 0 0 0 zap 1\n", "'shock SECONDS'" },
-                  BadArena{ "size 100 100\narea disc 1 2 3 0 0 0 shock 0\n", "above 0" }));
+                  BadArena{ "size 100 100\narea disc 1 2 3 0 0 0 shock 0\n", "above 0" },
+                  BadArena{ "size 100 100\nrobot 0 10 10 0\n", "or '-'" },
+                  BadArena{ "size 100 100\nrobot 1 10 10 0 selector 16\n", "0 to 15" },
+                  BadArena{ "size 100 100\nrobot 1 10 10 0 selector 2.5\n", "0 to 15" },
+                  BadArena{ "size 100 100\nrobot 1 10 10 0 battery 0\n", "above 0 to 100" },
+                  BadArena{ "size 100 100\nrobot 1 10 10 0 battery 101\n", "above 0 to 100" },
+                  BadArena{ "size 100 100\nrobot 1 10 10 0 speed 3\n", "'selector N'" },
+                  BadArena{ "size 100 100\nrobot 1 10 10 0 selector 1 selector 2\n",
+                            "'selector' is given twice" },
+                  BadArena{ "size 100 100\nrobot - 10 10 0\nrobot - 150 10 0\n",
+                            "robot number 2 (id '-') stands outside" },
+                  BadArena{ "size 100 100\nsound 10 10 9000 100\n", "up to 8192 Hz" },
+                  BadArena{ "size 100 100\nsound 10 10 1000 0\n", "level must be above 0" },
+                  BadArena{ "size 100 100\nsound 10 10 1000 5 start 3 stop 2\n",
+                            "stops after it starts" },
+                  BadArena{ "size 100 100\nsound 10 10 1000 5 beep 1\n", "missing value" },
+                  BadArena{ "size 100 100\nsound 10 10 1000 5 loud\n", "'beep ON OFF'" },
+                  BadArena{ "size 100 100\nsound 200 10 1000 5\n", "sound 1 stands outside" },
+                  BadArena{ "size 100 100\nbattery 0\n", "capacity must be above 0" },
+                  BadArena{ "size 100 100\nbattery 100 20\n", "missing value" },
+                  BadArena{ "size 100 100\nbattery 100 -1 2\n", "not be below 0" }));
+
+TEST(ArenaFile, RobotsWithoutAnIdMayShareTheirSelectorsId)
+{
+    Arena arena = parse_arena("size 100 100\nrobot - 10 10 0\nrobot - 20 20 0\n", "ok.arena");
+    EXPECT_EQ(arena.robots.size(), 2u);
+}
 
 TEST(ArenaFile, AddedRobotsAreClearOfWallsObstaclesAndEachOther)
 {
@@ -98,6 +162,47 @@ TEST(ArenaFile, AddedRobotsAreClearOfWallsObstaclesAndEachOther)
     EXPECT_EQ(arena.robots.size(), 1u);
     EXPECT_EQ(arena.robots[0].node_id, 3);
     EXPECT_THROW(set_robot_count(arena, 10000), std::runtime_error);
+}
+
+// Drawn starts: inside, clear of the walls (a body and 1 cm), of each other,
+// and of every coloured area; the same seed gives the same places.
+TEST(ArenaFile, DrawnStartsAreFreeAndFollowTheSeed)
+{
+    const double body = 3.7, clearance = 1;
+    Arena original = default_arena();
+    Arena first = original, again = original, other = original;
+    draw_start_positions(first, 1);
+    draw_start_positions(again, 1);
+    draw_start_positions(other, 2);
+    ASSERT_EQ(first.robots.size(), original.robots.size());
+    bool seed_matters = false;
+    for (size_t i = 0; i < first.robots.size(); i++) {
+        const RobotPlacement &robot = first.robots[i];
+        EXPECT_EQ(robot.node_id, original.robots[i].node_id);
+        EXPECT_GE(robot.x, body + clearance);
+        EXPECT_LE(robot.x, first.width - body - clearance);
+        EXPECT_GE(robot.y, body + clearance);
+        EXPECT_LE(robot.y, first.height - body - clearance);
+        EXPECT_GE(robot.heading_degrees, 0);
+        EXPECT_LT(robot.heading_degrees, 360);
+        for (const GroundArea &area : first.areas) // the default arena's discs
+            EXPECT_GT(std::hypot(robot.x - area.x, robot.y - area.y), area.radius + body);
+        for (size_t j = i + 1; j < first.robots.size(); j++)
+            EXPECT_GE(std::hypot(robot.x - first.robots[j].x, robot.y - first.robots[j].y),
+                      2 * (body + clearance));
+        EXPECT_EQ(robot.x, again.robots[i].x);
+        EXPECT_EQ(robot.heading_degrees, again.robots[i].heading_degrees);
+        seed_matters |= robot.x != other.robots[i].x;
+    }
+    EXPECT_TRUE(seed_matters);
+    // Rectangles too, and obstacles; and a robot that cannot fit is an error.
+    Arena every = read_arena_file("tests/arena/data/every-statement.arena");
+    draw_start_positions(every, 3);
+    for (const RobotPlacement &robot : every.robots)
+        EXPECT_EQ(every.ground_color(robot.x, robot.y).blue, 0.3) << robot.x << ", " << robot.y;
+    Arena covered =
+      parse_arena("size 50 50\narea rectangle 0 0 50 50 1 0 0\nrobot 1 25 25 0\n", "covered.arena");
+    EXPECT_THROW(draw_start_positions(covered, 1), std::runtime_error);
 }
 
 TEST(ArenaFile, DefaultArenaIsThePapersSetup)

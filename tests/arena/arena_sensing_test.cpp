@@ -15,11 +15,11 @@
 #include <map>
 #include <numeric>
 
-#include "tools/emulator/arena_simulation.hpp"
-#include "tools/compiler/program_file.hpp"
-#include "tools/compiler/target_presets.hpp"
+#include "arena_test_support.hpp"
 
 using namespace aseba::arena;
+using arena_test::compile;
+using arena_test::variables;
 
 namespace
 {
@@ -39,21 +39,6 @@ Arena empty_arena(Color floor = { 0.2, 0.2, 0.2 })
     arena.floor_color = floor;
     arena.robots = { { 1, arena_side / 2, arena_side / 2, 0 } };
     return arena;
-}
-
-std::vector<uint16_t> compile(const std::string &path)
-{
-    aseba::ProgramFile program = aseba::read_program_file(path, "");
-    std::string error;
-    aseba::CompileResult result =
-      aseba::compile_program_file(program, aseba::epuck_target(), error);
-    EXPECT_TRUE(result.ok) << error;
-    return result.bytecode;
-}
-
-epuck_named_variables &variables(ArenaSimulation &simulation, size_t robot = 0)
-{
-    return simulation.firmware(robot).variables.named;
 }
 
 void set_wheels(ArenaSimulation &simulation, int16_t left, int16_t right)
@@ -333,22 +318,45 @@ TEST(ArenaNetwork, EmitsReachEveryOtherRobot)
 namespace
 {
 
+// What a run ends with: each robot's pose, variables and battery charge.
 struct RunResult {
     std::vector<Pose> poses;
     std::vector<std::vector<int16_t>> variables;
+    std::vector<double> charges;
 };
 
-RunResult run_annex(uint32_t seed, const std::vector<uint16_t> &bytecode)
+RunResult snapshot(ArenaSimulation &simulation)
 {
-    ArenaSimulation simulation(default_arena(), seed, bytecode);
-    simulation.run_for(10);
     RunResult result;
     for (size_t i = 0; i < simulation.robot_count(); i++) {
         result.poses.push_back(simulation.world().pose(i));
         const auto &words = simulation.firmware(i).variables.words;
         result.variables.emplace_back(std::begin(words), std::end(words));
+        result.charges.push_back(simulation.world().battery(i).charge());
     }
     return result;
+}
+
+// Checks that two runs ended alike, bit for bit; returns whether a third
+// one, `other`, differs somewhere.
+bool expect_same_run(const RunResult &first, const RunResult &second, const RunResult &other)
+{
+    bool differs = false;
+    for (size_t i = 0; i < first.poses.size(); i++) {
+        EXPECT_EQ(std::memcmp(&first.poses[i], &second.poses[i], sizeof(Pose)), 0) << "robot " << i;
+        EXPECT_EQ(first.variables[i], second.variables[i]) << "robot " << i;
+        EXPECT_EQ(first.charges[i], second.charges[i]) << "robot " << i;
+        differs |= std::memcmp(&first.poses[i], &other.poses[i], sizeof(Pose)) != 0 ||
+                   first.variables[i] != other.variables[i];
+    }
+    return differs;
+}
+
+RunResult run_annex(uint32_t seed, const std::vector<uint16_t> &bytecode)
+{
+    ArenaSimulation simulation(default_arena(), seed, bytecode);
+    simulation.run_for(10);
+    return snapshot(simulation);
 }
 
 } // namespace
@@ -359,15 +367,53 @@ TEST(ArenaDeterminism, SameSeedSameRunBitForBit)
     RunResult first = run_annex(7, annex);
     RunResult second = run_annex(7, annex);
     RunResult other_seed = run_annex(8, annex);
-    bool seed_matters = false;
-    for (size_t i = 0; i < first.poses.size(); i++) {
-        EXPECT_EQ(std::memcmp(&first.poses[i], &second.poses[i], sizeof(Pose)), 0) << "robot " << i;
-        EXPECT_EQ(first.variables[i], second.variables[i]) << "robot " << i;
-        seed_matters |= std::memcmp(&first.poses[i], &other_seed.poses[i], sizeof(Pose)) != 0;
-        // The robots did move in these 10 s.
+    EXPECT_TRUE(expect_same_run(first, second, other_seed)) << "the seed changed nothing";
+    // The robots did move in these 10 s.
+    for (size_t i = 0; i < first.poses.size(); i++)
         EXPECT_GT(std::hypot(first.poses[i].x - default_arena().robots[i].x,
                              first.poses[i].y - default_arena().robots[i].y),
                   5);
+}
+
+namespace
+{
+
+// The sound arena with starts drawn from the seed, selectors, a battery that
+// runs low and remote key presses, running the sound-direction example.
+RunResult run_every_input(uint32_t seed, const std::vector<uint16_t> &bytecode)
+{
+    Arena arena = read_arena_file("examples/sound.arena");
+    arena.battery.capacity_mah = 1;
+    for (size_t i = 0; i < arena.robots.size(); i++) {
+        arena.robots[i].selector = uint16_t(3 * i);
+        arena.robots[i].battery_charge = 0.06;
     }
-    EXPECT_TRUE(seed_matters);
+    draw_start_positions(arena, seed);
+    ArenaSimulation simulation(arena, seed, bytecode);
+    simulation.run_for(1);
+    simulation.press_remote_key({ 0, 2 }, 0, 12);
+    simulation.set_selector(1, 7);
+    simulation.run_for(1);
+    return snapshot(simulation);
+}
+
+} // namespace
+
+TEST(ArenaDeterminism, SameSeedSameRunWithSoundSelectorsRemoteAndBattery)
+{
+    std::vector<uint16_t> program = compile("examples/sound-direction.aesl");
+    RunResult first = run_every_input(5, program);
+    RunResult second = run_every_input(5, program);
+    RunResult other_seed = run_every_input(6, program);
+    EXPECT_TRUE(expect_same_run(first, second, other_seed)) << "the seed changed nothing";
+    // The run did use the new inputs: recordings, a remote key, a selector
+    // and a battery run low (1 mAh from 6 %: 0.01 mAh in 0.3 s or less).
+    const epuck_named_variables &robot1 =
+      *reinterpret_cast<const epuck_named_variables *>(first.variables[0].data());
+    const epuck_named_variables &robot2 =
+      *reinterpret_cast<const epuck_named_variables *>(first.variables[1].data());
+    EXPECT_EQ(robot1.rc5[0], 12);
+    EXPECT_EQ(robot2.selector[0], 7);
+    EXPECT_EQ(robot1.battery[0], 0);
+    EXPECT_NE(std::count(std::begin(robot1.mic_samples0), std::end(robot1.mic_samples0), 0), 32);
 }

@@ -5,7 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "experiments/dangerous-areas/experiment.hpp"
 #include "experiments/dangerous-areas/report.hpp"
@@ -166,30 +172,112 @@ TEST(DangerousAreas, AnnexWithLocalsDoesWhatTheAnnexDoes)
     EXPECT_GT(alarms, 0u) << "a run without alarms would not compare parts C to E";
 }
 
+namespace
+{
+
+// A 60 s run of two robots that spent `a` and `b` seconds on red.
+RunResult two_robots(Condition condition, uint32_t seed, double a, double b)
+{
+    RunResult result;
+    result.condition = condition;
+    result.seed = seed;
+    result.seconds = 60;
+    result.robots = { { .node_id = 1, .seconds_on_dangerous = a, .seconds_on_area = { a } },
+                      { .node_id = 2, .seconds_on_dangerous = b, .seconds_on_area = { b } } };
+    return result;
+}
+
+} // namespace
+
 TEST(DangerousAreasReport, SummaryIsTheMeanAndSpreadOfTheRunMeans)
 {
     // Two runs of two robots: run means 1 and 3, so mean 2 and s.d. √2.
-    auto run = [](uint32_t seed, double a, double b) {
-        RunResult result;
-        result.condition = both_on;
-        result.seed = seed;
-        result.robots = { { .node_id = 1, .seconds_on_dangerous = a, .seconds_on_area = { a } },
-                          { .node_id = 2, .seconds_on_dangerous = b, .seconds_on_area = { b } } };
-        return result;
-    };
-    std::vector<ConditionSummary> summaries = summarize({ run(1, 0.5, 1.5), run(2, 2, 4) });
+    std::vector<ConditionSummary> summaries =
+      summarize({ two_robots(both_on, 1, 0.5, 1.5), two_robots(both_on, 2, 2, 4) });
     ASSERT_EQ(summaries.size(), 1u);
     EXPECT_DOUBLE_EQ(summaries[0].mean, 2);
     EXPECT_DOUBLE_EQ(summaries[0].standard_deviation, std::sqrt(2.0));
     EXPECT_DOUBLE_EQ(summaries[0].minimum, 1);
     EXPECT_DOUBLE_EQ(summaries[0].maximum, 3);
 
-    std::string csv = csv_text({ run(1, 0.5, 1.5) }, { "red" });
+    std::string csv = csv_text({ two_robots(both_on, 1, 0.5, 1.5) }, { "red" });
     EXPECT_EQ(csv,
-              "condition,communication,shocks,seed,node_id,seconds_on_dangerous,"
+              "condition,communication,shocks,seed,duration,node_id,seconds_on_dangerous,"
               "seconds_on_red,events_emitted\n"
-              "shocks+communication,on,on,1,1,0.50,0.50,0\n"
-              "shocks+communication,on,on,1,2,1.50,1.50,0\n");
+              "shocks+communication,on,on,1,60,1,0.50,0.50,0\n"
+              "shocks+communication,on,on,1,60,2,1.50,1.50,0\n");
+}
+
+namespace
+{
+
+// What a command prints, and whether it succeeded.
+std::pair<std::string, bool> run_command(const std::string &command)
+{
+    std::string output;
+    FILE *pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr)
+        return { "", false };
+    char buffer[256];
+    while (std::fgets(buffer, sizeof buffer, pipe))
+        output += buffer;
+    return { output, pclose(pipe) == 0 };
+}
+
+// How many markers the SVG group `id` draws (matplotlib writes a scatter's
+// points as <use> elements in a group with the artist's gid).
+int markers_in_group(const std::string &svg, const std::string &id)
+{
+    size_t start = svg.find("<g id=\"" + id + "\">");
+    if (start == std::string::npos)
+        return -1;
+    size_t end = svg.find("\n   </g>", start);
+    int count = 0;
+    for (size_t at = svg.find("<use ", start); at < end; at = svg.find("<use ", at + 1))
+        count++;
+    return count;
+}
+
+} // namespace
+
+// plot.py draws the figure from the CSV with matplotlib (Debian's Python,
+// which has python3-matplotlib): per condition a bar at the mean of the run
+// means, a whisker, a dot per run and a dot per robot; it prints the same
+// summary as the table.
+TEST(DangerousAreasReport, FigureIsDrawnFromTheCsv)
+{
+    std::vector<RunResult> runs = { two_robots(both_on, 1, 0.5, 1.5),
+                                    two_robots(both_on, 2, 2, 4),
+                                    two_robots(both_off, 1, 3, 5) };
+    std::filesystem::path folder = std::filesystem::temp_directory_path() /
+                                   ("dangerous-areas-plot-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder / "runs.csv") << csv_text(runs, { "red" });
+    const std::string figure = (folder / "figure.svg").string();
+    auto [output, succeeded] = run_command("/usr/bin/python3 experiments/dangerous-areas/plot.py " +
+                                           (folder / "runs.csv").string() + " " + figure + " 2>&1");
+    ASSERT_TRUE(succeeded) << output;
+    // Run means 1 and 3: mean 2, s.d. √2 (the table's summary).
+    EXPECT_NE(output.find("shocks+communication: 2 runs, mean 2.00 s, standard deviation 1.41 s"),
+              std::string::npos)
+      << output;
+    EXPECT_NE(output.find("neither: 1 runs, mean 4.00 s, standard deviation 0.00 s"),
+              std::string::npos)
+      << output;
+    std::stringstream svg;
+    svg << std::ifstream(figure).rdbuf();
+    EXPECT_EQ(markers_in_group(svg.str(), "robots-shocks+communication"), 4);
+    EXPECT_EQ(markers_in_group(svg.str(), "runs-shocks+communication"), 2);
+    EXPECT_EQ(markers_in_group(svg.str(), "robots-neither"), 2);
+    EXPECT_EQ(markers_in_group(svg.str(), "runs-neither"), 1);
+    EXPECT_NE(svg.str().find("<g id=\"bar-neither\">"), std::string::npos);
+    EXPECT_EQ(svg.str().find("bar-shocks-only"), std::string::npos) << "a condition without runs";
+    std::filesystem::remove_all(folder);
+
+    auto [error, ok] = run_command("/usr/bin/python3 experiments/dangerous-areas/plot.py " +
+                                   (folder / "missing.csv").string() + " x.svg 2>&1");
+    EXPECT_FALSE(ok);
+    EXPECT_NE(error.find("cannot read"), std::string::npos) << error;
 }
 
 TEST(DangerousAreasReport, AreaNamesComeFromTheirStrongestColour)

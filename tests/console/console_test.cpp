@@ -143,9 +143,10 @@ TEST_F(Console, NodesListsAndDescribesTheRobot)
                          "variables: id source args[32] leftSpeed rightSpeed "
                          "leds[8] prox[8] ambiant[8] acc[3] camLine camR[60] "
                          "camG[60] camB[60] steps.left steps.right mic[3] sel rc5 "
-                         "timer.period battery"))
+                         "timer.period battery mic.samples0[32] mic.samples1[32] "
+                         "mic.samples2[32]"))
       << described.out;
-    EXPECT_TRUE(contains(described.out, "local events: ir_sensors camera timer"));
+    EXPECT_TRUE(contains(described.out, "local events: ir_sensors camera timer microphones"));
     EXPECT_TRUE(contains(described.out, "math.fill(dest[<1>], value)")) << described.out;
 
     CommandResult unknown = aseba({ "nodes", "--node", "9" });

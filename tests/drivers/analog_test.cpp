@@ -1,6 +1,7 @@
 // The analog drivers on the host board's ADC scan: proximity pulse and
 // sample timing and calibration (hardware §3.2), accelerometer offsets
-// (§3.3) and microphone volume (§3.4), against a modelled world.
+// (§3.3), microphone volume and recordings (§3.4), against a modelled
+// world.
 
 #include "modelled_world.hpp"
 
@@ -209,6 +210,51 @@ TEST_F(Analog, MicrophoneVolumeIsMaxMinusMin)
     epuck_microphones_read(&microphones, volume.data());
     for (int i = 0; i < 3; i++)
         EXPECT_EQ(volume[i], 2 * amplitude[i]) << i;
+}
+
+// A recording is 32 readings of each microphone one scan (1/16384 s) apart,
+// less their mean, about 15 times a second (1024 of the 62 in 65 scans that
+// read the microphones). The world shows each microphone a ramp that climbs
+// by k + 1 counts a scan, so that consecutive readings differ by exactly
+// k + 1 and a skipped scan would show as a step of 2(k + 1).
+TEST_F(Analog, RecordingsAreConsecutiveScansLessTheirMean)
+{
+    world.signal = [&](uint8_t channel, uint64_t cycle) -> uint16_t {
+        if (channel < EPUCK_ADC_MICROPHONE_0 || channel > EPUCK_ADC_MICROPHONE_0 + 2)
+            return 2048;
+        uint64_t scan = uint64_t(std::llround(double(cycle) / FCY * scan_rate));
+        unsigned slope = unsigned(channel - EPUCK_ADC_MICROPHONE_0) + 1;
+        return uint16_t(1000 + slope * (scan % 500));
+    };
+    start();
+    std::array<std::array<int16_t, EPUCK_MICROPHONE_RECORD_SAMPLES>, 3> recorded{};
+    int16_t *const recordings[3] = { recorded[0].data(), recorded[1].data(), recorded[2].data() };
+    int taken = 0;
+    const double seconds = 2;
+    for (double t = 0; t < seconds; t += 1e-3) {
+        run_seconds(1e-3);
+        if (!epuck_microphones_take_recording(&microphones, recordings))
+            continue;
+        taken++;
+        for (int k = 0; k < 3; k++) {
+            int sum = 0;
+            for (unsigned n = 0; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++)
+                sum += recorded[k][n];
+            // The ramp's mean is a half-integer for an odd slope: rounded.
+            EXPECT_LE(std::abs(sum), int(EPUCK_MICROPHONE_RECORD_SAMPLES) / 2) << k;
+            for (unsigned n = 1; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++) {
+                int step = recorded[k][n] - recorded[k][n - 1];
+                // The ramp wraps every 500 scans.
+                if (step > -400) {
+                    ASSERT_EQ(step, k + 1) << "microphone " << k << ", reading " << n;
+                }
+            }
+        }
+    }
+    double expected_rate = scan_rate * 62 / 65 / EPUCK_MICROPHONE_RECORD_INTERVAL;
+    EXPECT_NEAR(taken / seconds, expected_rate, 1.0);
+    EXPECT_FALSE(epuck_microphones_take_recording(&microphones, recordings))
+      << "a recording taken twice";
 }
 
 } // namespace

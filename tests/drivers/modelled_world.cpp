@@ -67,6 +67,12 @@ bool i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, uint16
     return true;
 }
 
+uint64_t input_change_after(void *context, uint64_t after_cycle)
+{
+    ModelledWorld &world = world_of(context);
+    return world.next_input_change ? world.next_input_change(after_cycle) : HOST_NO_INPUT_CHANGE;
+}
+
 uint8_t camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 {
     ModelledWorld &world = world_of(context);
@@ -79,7 +85,8 @@ uint8_t camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 
 ModelledWorld::ModelledWorld()
 {
-    table = { this, adc_read, pin_read, pin_written, i2c_write, i2c_read, camera_byte };
+    table = { this,      adc_read, pin_read,    pin_written,
+              i2c_write, i2c_read, camera_byte, input_change_after };
     input[EPUCK_PIN_REMOTE] = true; // idles high
     input[EPUCK_PIN_BATTERY_LOW] = true;
 }

@@ -43,9 +43,11 @@ struct ModelledWorld {
     // Other channels (microphones, accelerometer), unless `signal` is set.
     std::array<uint16_t, EPUCK_ADC_CHANNEL_COUNT> channel{};
     std::function<uint16_t(uint8_t channel, uint64_t cycle)> signal;
-    // Input pins, unless `input_signal` is set.
+    // Input pins, unless `input_signal` is set; when set,
+    // `next_input_change` says when they may change next (host_world.h).
     std::array<bool, EPUCK_PIN_COUNT> input{};
     std::function<bool(epuck_pin pin, uint64_t cycle)> input_signal;
+    std::function<uint64_t(uint64_t after_cycle)> next_input_change;
 
     // A PO3030K: its registers, the identification in 0x00/0x01, and the
     // bytes of each row it sends.

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
 
 extern "C" {
@@ -59,6 +60,11 @@ struct Rc5 : ::testing::Test {
         };
         world.attach(board.get());
         ASSERT_TRUE(epuck_rc5_init(&rc5, board.get()));
+    }
+    // Runs `seconds` at once, leaving the board to find the remote's edges.
+    void run_unpolled(double seconds)
+    {
+        host_board_advance(board.get(), uint64_t(seconds * FCY));
     }
     // Runs `seconds`, telling the board about the remote line every 10 µs.
     void run_seconds(double seconds)
@@ -115,6 +121,35 @@ TEST_F(Rc5, DecodesFramesOneAfterAnother)
     ASSERT_TRUE(epuck_rc5_take(&rc5, &toggle, &address, &command));
     EXPECT_EQ(command, 33);
     EXPECT_EQ(toggle, 1);
+}
+
+// The host board signals the falling edge at the cycle the world announces
+// it (host_world.h, next_input_change), as INT0 would on the chip: no need
+// to tell it about the line in between.
+TEST_F(Rc5, DecodesWithTheEdgesTheWorldAnnounces)
+{
+    const double start = 0.005;
+    frames.push_back({ { 1, 20, 45 }, start });
+    uint8_t toggle, address, command;
+    // Unannounced and unpolled, the first edge goes unseen.
+    run_unpolled(0.05);
+    EXPECT_FALSE(epuck_rc5_take(&rc5, &toggle, &address, &command));
+    // Announced: every half-bit boundary of the frames.
+    frames[0].second = 0.06;
+    world.next_input_change = [this](uint64_t after) {
+        for (auto &[frame, begin] : frames)
+            for (int half = 0; half <= 28; half++) {
+                uint64_t boundary = uint64_t(std::ceil((begin + half * half_bit) * FCY));
+                if (boundary > after)
+                    return boundary;
+            }
+        return HOST_NO_INPUT_CHANGE;
+    };
+    run_unpolled(0.05);
+    ASSERT_TRUE(epuck_rc5_take(&rc5, &toggle, &address, &command));
+    EXPECT_EQ(toggle, 1);
+    EXPECT_EQ(address, 20);
+    EXPECT_EQ(command, 45);
 }
 
 // A short glitch is not a frame: the line is high again at the check.

@@ -58,8 +58,15 @@ const std::vector<NamedVariable> epuck_variables = {
     { 1, "rc5" },
     { 1, "timer.period" },
     { 1, "battery" },
+    // Ours: the microphones' recordings.
+    { 32, "mic.samples0" },
+    { 32, "mic.samples1" },
+    { 32, "mic.samples2" },
 };
-const std::vector<std::string> epuck_local_events = { "ir_sensors", "camera", "timer" };
+const std::vector<std::string> epuck_local_events = { "ir_sensors",
+                                                      "camera",
+                                                      "timer",
+                                                      "microphones" };
 // The standard natives, in order (language.md §13.1), the e-puck's first.
 const std::vector<std::string> standard_natives = {
     "math.copy",   "math.fill",        "math.addscalar",  "math.add",        "math.sub",

@@ -2,7 +2,9 @@
 // our compiler for the e-puck with the DSP natives after the standard ones
 // (the order the e-puck's table will have) and run on our VM: recordings in
 // which one microphone hears a noise burst first must turn the robot
-// towards that side, then stop it after the turn.
+// towards that side, a sound ahead or silence stop it, and a sound behind
+// (the back microphone first) turn it round. The arena runs it on the
+// firmware's own recordings (tests/arena/sound_test.cpp).
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -20,7 +22,6 @@ namespace
 {
 
 constexpr uint16_t samples = 32;
-constexpr uint16_t sender = 2;
 constexpr uint16_t local_event_base = 0xFFFE; // first local event (init is 0xFFFF)
 
 // The e-puck target, which exports the DSP natives right after the standard
@@ -75,41 +76,39 @@ class SoundDirectionDemo : public ::testing::Test
         definitions = project.project.definitions;
     }
 
-    // Runs the demo on a fresh node, sends the two recordings, and returns
-    // the wheel speeds it sets; `ticks` timer events follow.
-    std::pair<int16_t, int16_t> speeds_after(const Words &left, const Words &right, int ticks)
+    // Runs the demo on a fresh node, puts the recordings in the firmware's
+    // variables (mic.samples0 right, 1 left, 2 back) and raises
+    // `microphones`; returns the wheel speeds it sets.
+    std::pair<int16_t, int16_t> speeds_after(const Words &right,
+                                             const Words &left,
+                                             const Words &back)
     {
-        DspNode node(target.variables_size, target.bytecode_size, samples);
+        DspNode node(target.variables_size, target.bytecode_size);
         node.load_and_run_init(image);
         node.vm.flags = 0;
-        vm_receive_event(&node.vm, 0, sender, left.data(), samples);
+        node.put(named_address(target, "mic.samples0"), right);
+        node.put(named_address(target, "mic.samples1"), left);
+        node.put(named_address(target, "mic.samples2"), back);
+        vm_setup_event(&node.vm, local_event(target, "microphones"));
         vm_run(&node.vm, 0);
-        vm_receive_event(&node.vm, 1, sender, right.data(), samples);
-        vm_run(&node.vm, 0);
-        for (int tick = 0; tick < ticks; ++tick) {
-            vm_setup_event(&node.vm, local_event(target, "timer"));
-            vm_run(&node.vm, 0);
-        }
         EXPECT_TRUE(node.errors.empty());
         return { node.variables[named_address(target, "leftSpeed")],
                  node.variables[named_address(target, "rightSpeed")] };
     }
 
-    // A noise burst heard by the left microphone `delay` samples after the
-    // right one (negative: before).
-    std::pair<Words, Words> recordings(int delay)
+    // A noise burst as heard `delay` samples after the right microphone
+    // (negative: before).
+    Words heard(int delay)
     {
-        std::mt19937 generator(31);
-        const auto burst = random_words(generator, samples + 20, -2000, 2000);
-        Words left(samples), right(samples);
-        for (int n = 0; n < samples; ++n) {
-            right[n] = burst[n + 10];
-            left[n] = burst[n + 10 - delay];
-        }
-        return { left, right };
+        Words recording(samples);
+        for (int n = 0; n < samples; ++n)
+            recording[n] = burst[n + 10 - delay];
+        return recording;
     }
 
     aseba::TargetDescription target = epuck_with_dsp();
+    std::mt19937 generator{ 31 };
+    const Words burst = random_words(generator, samples + 20, -2000, 2000);
     std::vector<uint16_t> image;
     std::string source;
     aseba::CommonDefinitions definitions;
@@ -129,30 +128,29 @@ TEST_F(SoundDirectionDemo, CompilesWordForWordAsTheReferenceCompilerDoes)
 
 TEST_F(SoundDirectionDemo, TurnsTowardsTheMicrophoneThatHearsFirst)
 {
-    for (int delay : { 1, 3, 6 }) {
+    // The left and right microphones are 3 readings apart at most.
+    for (int delay : { 1, 2, 3 }) {
         // Right first: the source is on the right, turn clockwise.
-        const auto [right_left, right_right] = recordings(delay);
-        const auto clockwise = speeds_after(right_left, right_right, 0);
+        const auto clockwise = speeds_after(heard(0), heard(delay), heard(1));
         EXPECT_GT(clockwise.first, 0) << delay;
         EXPECT_LT(clockwise.second, 0) << delay;
         // Left first: counter-clockwise, as fast (the speed is proportional).
-        const auto [left_left, left_right] = recordings(-delay);
-        const auto counter = speeds_after(left_left, left_right, 0);
+        const auto counter = speeds_after(heard(0), heard(-delay), heard(1));
         EXPECT_EQ(counter.first, -clockwise.first) << delay;
         EXPECT_EQ(counter.second, -clockwise.second) << delay;
     }
-    // In front (no delay): no turn.
-    const auto [left, right] = recordings(0);
-    EXPECT_EQ(speeds_after(left, right, 0), std::make_pair(int16_t(0), int16_t(0)));
 }
 
-TEST_F(SoundDirectionDemo, StopsAfterTheTurnAndIgnoresSilence)
+TEST_F(SoundDirectionDemo, StopsWhenTheSoundIsAheadOrSilentAndTurnsRoundFromBehind)
 {
-    const auto [left, right] = recordings(3);
-    EXPECT_NE(speeds_after(left, right, 4).first, 0);
-    EXPECT_EQ(speeds_after(left, right, 5), std::make_pair(int16_t(0), int16_t(0)));
-    EXPECT_EQ(speeds_after(Words(samples, 0), Words(samples, 0), 0),
+    // Ahead: left and right together, the back one later.
+    EXPECT_EQ(speeds_after(heard(0), heard(0), heard(2)), std::make_pair(int16_t(0), int16_t(0)));
+    EXPECT_EQ(speeds_after(Words(samples, 0), Words(samples, 0), Words(samples, 0)),
               std::make_pair(int16_t(0), int16_t(0)));
+    // Behind: the back microphone first.
+    const auto round = speeds_after(heard(0), heard(0), heard(-2));
+    EXPECT_GT(round.first, 0);
+    EXPECT_EQ(round.second, -round.first);
 }
 
 } // namespace

@@ -129,8 +129,8 @@ TEST_F(QemuNode, TheConsoleDiscoversAnEpuck)
     // robots give it (README.md).
     EXPECT_TRUE(has_line(nodes,
                          "node 1 \"e-puck\" on " + machine->target() +
-                           ": protocol 5, bytecode 1024 words, stack 32, variables 509 words (20 "
-                           "named), 3 local events, 37 native functions; running"));
+                           ": protocol 5, bytecode 1024 words, stack 32, variables 605 words (23 "
+                           "named), 4 local events, 37 native functions; running"));
 }
 
 TEST_F(QemuNode, AsebamassloaderLoadsAProgramWhoseVariablesReadBack)

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <random>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -26,6 +28,13 @@ constexpr double placement_clearance = 1;
 constexpr double default_side = 100;
 constexpr double room_per_robot = 20;
 constexpr double default_area_radius = 14; // fraction of a 100 cm side, scaled
+
+// The microphones are sampled 16384 times a second (drivers/epuck): a tone
+// above half that would alias.
+constexpr double highest_frequency = 8192;
+constexpr unsigned selector_positions = 16;
+// Draws before drawn start positions give up on a robot.
+constexpr int placement_attempts = 10000;
 
 bool inside_unit(double value)
 {
@@ -51,7 +60,11 @@ class LineReader
 
     double number(const char *what)
     {
-        std::string text = word();
+        return number_from(word(), what);
+    }
+
+    double number_from(const std::string &text, const char *what)
+    {
         char *end = nullptr;
         double value = std::strtod(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0' || !std::isfinite(value))
@@ -65,6 +78,23 @@ class LineReader
         if (value <= 0)
             fail(std::string(what) + " must be above 0");
         return value;
+    }
+
+    double not_negative(const char *what)
+    {
+        double value = number(what);
+        if (value < 0)
+            fail(std::string(what) + " must not be below 0");
+        return value;
+    }
+
+    // The next option word of a statement, each allowed once.
+    std::string option()
+    {
+        std::string name = word();
+        if (!options_seen_.insert(name).second)
+            fail("'" + name + "' is given twice");
+        return name;
     }
 
     Color color()
@@ -98,14 +128,85 @@ class LineReader
   private:
     std::istringstream stream_;
     std::string where_;
+    std::set<std::string> options_seen_;
 };
 
-bool robot_fits(const Arena &arena, double x, double y)
+RobotPlacement parse_robot(LineReader &read)
+{
+    RobotPlacement robot;
+    std::string id = read.word();
+    if (id == "-") {
+        robot.node_id = RobotPlacement::node_id_from_selector;
+    } else {
+        double number = read.number_from(id, "node id");
+        if (number < 1 || number > 0xFFFE || number != std::floor(number))
+            read.fail("a node id is a whole number from 1 to 65534, or '-'");
+        robot.node_id = uint16_t(number);
+    }
+    robot.x = read.number("x");
+    robot.y = read.number("y");
+    robot.heading_degrees = read.number("heading");
+    while (read.more()) {
+        std::string option = read.option();
+        if (option == "selector") {
+            double position = read.number("selector");
+            if (position < 0 || position >= selector_positions || position != std::floor(position))
+                read.fail("the selector goes from 0 to 15");
+            robot.selector = uint16_t(position);
+        } else if (option == "battery") {
+            double percent = read.number("battery charge");
+            if (!(percent > 0 && percent <= 100))
+                read.fail("a battery charge goes from above 0 to 100 %");
+            robot.battery_charge = percent / 100;
+        } else {
+            read.fail("expected 'selector N' or 'battery PERCENT' after the heading, not '" +
+                      option + "'");
+        }
+    }
+    return robot;
+}
+
+SoundSource parse_sound(LineReader &read)
+{
+    SoundSource sound;
+    sound.x = read.number("x");
+    sound.y = read.number("y");
+    sound.frequency = read.positive("frequency");
+    if (sound.frequency > highest_frequency)
+        read.fail("the microphones hear up to 8192 Hz, half their sampling rate");
+    sound.level = read.positive("level");
+    while (read.more()) {
+        std::string option = read.option();
+        if (option == "start") {
+            sound.start = read.not_negative("start");
+        } else if (option == "stop") {
+            sound.stop = read.positive("stop");
+        } else if (option == "beep") {
+            sound.beep_on = read.positive("beep on time");
+            sound.beep_off = read.positive("beep off time");
+        } else {
+            read.fail("expected 'start S', 'stop S' or 'beep ON OFF' after the level, not '" +
+                      option + "'");
+        }
+    }
+    if (sound.stop <= sound.start)
+        read.fail("a sound stops after it starts");
+    return sound;
+}
+
+bool inside(const Arena &arena, double x, double y)
+{
+    return x >= 0 && y >= 0 && x <= arena.width && y <= arena.height;
+}
+
+// Whether a robot at (x, y) is clear of the walls, the obstacles and the
+// robots `others`.
+bool robot_fits(const Arena &arena, const std::vector<RobotPlacement> &others, double x, double y)
 {
     double margin = robot_radius + placement_clearance;
     if (x < margin || y < margin || x > arena.width - margin || y > arena.height - margin)
         return false;
-    for (const RobotPlacement &robot : arena.robots)
+    for (const RobotPlacement &robot : others)
         if (std::hypot(robot.x - x, robot.y - y) < 2 * margin)
             return false;
     for (const Obstacle &obstacle : arena.obstacles) {
@@ -119,7 +220,34 @@ bool robot_fits(const Arena &arena, double x, double y)
     return true;
 }
 
+// Whether a robot's body at (x, y) touches no ground area.
+bool off_the_areas(const Arena &arena, double x, double y)
+{
+    for (const GroundArea &area : arena.areas) {
+        double gap;
+        if (area.shape == GroundArea::Shape::disc) {
+            gap = std::hypot(x - area.x, y - area.y) - area.radius;
+        } else {
+            double dx = std::max({ area.x - x, 0.0, x - (area.x + area.width) });
+            double dy = std::max({ area.y - y, 0.0, y - (area.y + area.height) });
+            gap = std::hypot(dx, dy);
+        }
+        if (gap <= robot_radius)
+            return false;
+    }
+    return true;
+}
+
 } // namespace
+
+bool SoundSource::sounding(double seconds) const
+{
+    if (seconds < start || seconds >= stop)
+        return false;
+    if (beep_on <= 0)
+        return true;
+    return std::fmod(seconds - start, beep_on + beep_off) < beep_on;
+}
 
 bool GroundArea::contains(double px, double py) const
 {
@@ -208,17 +336,19 @@ Arena parse_arena(const std::string &text, const std::string &source)
             }
             obstacle.color = read.color();
             arena.obstacles.push_back(obstacle);
+        } else if (keyword == "sound") {
+            arena.sounds.push_back(parse_sound(read));
+        } else if (keyword == "battery") {
+            arena.battery.capacity_mah = read.positive("capacity");
+            if (read.more()) {
+                arena.battery.idle_ma = read.not_negative("idle current");
+                arena.battery.motor_ma = read.not_negative("motor current");
+            }
         } else if (keyword == "robot") {
-            RobotPlacement robot;
-            double id = read.number("node id");
-            if (id < 1 || id > 0xFFFE || id != std::floor(id))
-                read.fail("a node id is a whole number from 1 to 65534");
-            robot.node_id = uint16_t(id);
-            robot.x = read.number("x");
-            robot.y = read.number("y");
-            robot.heading_degrees = read.number("heading");
+            RobotPlacement robot = parse_robot(read);
             for (const RobotPlacement &other : arena.robots)
-                if (other.node_id == robot.node_id)
+                if (robot.node_id != RobotPlacement::node_id_from_selector &&
+                    other.node_id == robot.node_id)
                     read.fail("node id " + std::to_string(robot.node_id) + " is used twice");
             arena.robots.push_back(robot);
         } else {
@@ -228,9 +358,18 @@ Arena parse_arena(const std::string &text, const std::string &source)
     }
     if (!sized)
         throw std::runtime_error(source + ": no 'size' statement");
-    for (const RobotPlacement &robot : arena.robots)
-        if (robot.x < 0 || robot.y < 0 || robot.x > arena.width || robot.y > arena.height)
-            throw std::runtime_error(source + ": robot " + std::to_string(robot.node_id) +
+    for (size_t i = 0; i < arena.robots.size(); i++) {
+        const RobotPlacement &robot = arena.robots[i];
+        if (!inside(arena, robot.x, robot.y))
+            throw std::runtime_error(source + ": robot " +
+                                     (robot.node_id != RobotPlacement::node_id_from_selector
+                                        ? std::to_string(robot.node_id)
+                                        : "number " + std::to_string(i + 1) + " (id '-')") +
+                                     " stands outside the arena");
+    }
+    for (size_t i = 0; i < arena.sounds.size(); i++)
+        if (!inside(arena, arena.sounds[i].x, arena.sounds[i].y))
+            throw std::runtime_error(source + ": sound " + std::to_string(i + 1) +
                                      " stands outside the arena");
     return arena;
 }
@@ -306,7 +445,7 @@ void set_robot_count(Arena &arena, size_t count)
          y += grid_spacing) {
         for (double x = grid_spacing / 2; x < arena.width && arena.robots.size() < count;
              x += grid_spacing) {
-            if (!robot_fits(arena, x, y))
+            if (!robot_fits(arena, arena.robots, x, y))
                 continue;
             if (next_id > 0xFFFE)
                 throw std::runtime_error("no node ids left for more robots");
@@ -321,6 +460,34 @@ void set_robot_count(Arena &arena, size_t count)
     if (arena.robots.size() < count)
         throw std::runtime_error("only " + std::to_string(arena.robots.size()) +
                                  " robots fit in the arena, not " + std::to_string(count));
+}
+
+void draw_start_positions(Arena &arena, uint32_t seed)
+{
+    // A generator of its own, fixed by the standard, so that the places do
+    // not depend on the library's distributions nor on Enki's draws.
+    std::mt19937 generator(seed);
+    auto uniform = [&generator] {
+        constexpr double range = 4294967296.0; // 2^32: mt19937 gives 32 bits
+        return (double(generator()) + 0.5) / range;
+    };
+    std::vector<RobotPlacement> placed;
+    for (RobotPlacement robot : arena.robots) {
+        int attempt = 0;
+        do {
+            if (++attempt > placement_attempts)
+                throw std::runtime_error("no free place off the coloured areas for robot " +
+                                         std::to_string(placed.size() + 1) + " of " +
+                                         std::to_string(arena.robots.size()) + " after " +
+                                         std::to_string(placement_attempts) + " draws");
+            robot.x = uniform() * arena.width;
+            robot.y = uniform() * arena.height;
+        } while (!robot_fits(arena, placed, robot.x, robot.y) ||
+                 !off_the_areas(arena, robot.x, robot.y));
+        robot.heading_degrees = uniform() * 360;
+        placed.push_back(robot);
+    }
+    arena.robots = placed;
 }
 
 } // namespace aseba::arena

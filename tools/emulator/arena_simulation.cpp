@@ -29,8 +29,15 @@ ArenaSimulation::ArenaSimulation(const Arena &arena,
 {
     for (size_t i = 0; i < arena.robots.size(); i++) {
         auto robot = std::make_unique<host_robot>();
-        host_robot_init(robot.get(), arena.robots[i].node_id, nullptr, nullptr);
+        uint16_t node_id = arena.robots[i].node_id;
+        host_robot_init(
+          robot.get(),
+          node_id == RobotPlacement::node_id_from_selector ? HOST_ROBOT_NODE_ID_AT_BOOT : node_id,
+          nullptr,
+          nullptr);
         host_board_set_world(&robot->board, world_.world_of(i));
+        // Its selector now stands where the arena put it.
+        host_robot_update_node_id(robot.get());
         network_.attach(&robot->board);
         host::power_on(*robot, prepare, bytecode);
         robots_.push_back(std::move(robot));
@@ -84,6 +91,28 @@ epuck_firmware &ArenaSimulation::firmware(size_t index)
 hal_board &ArenaSimulation::board(size_t index)
 {
     return robots_.at(index)->board;
+}
+
+uint16_t ArenaSimulation::node_id(size_t index) const
+{
+    return robots_.at(index)->node_id;
+}
+
+void ArenaSimulation::set_selector(size_t index, uint16_t position)
+{
+    world_.set_selector(index, position);
+}
+
+void ArenaSimulation::press_remote_key(const std::vector<size_t> &indices,
+                                       uint8_t address,
+                                       uint8_t command)
+{
+    // A remote flips its toggle bit at each new key press, so that a
+    // receiver tells a second press from a held key.
+    remote_toggle_ ^= 1u;
+    Rc5Frame frame{ remote_toggle_, address, command };
+    for (size_t index : indices)
+        world_.send_rc5(index, frame);
 }
 
 } // namespace aseba::arena

@@ -27,8 +27,9 @@ namespace aseba::arena
 class ArenaSimulation
 {
   public:
-    // Builds the world and powers each robot on with its node id, `prepare`
-    // and `bytecode` as host::power_on does (robot_memory.hpp).
+    // Builds the world and powers each robot on with its node id (or, for a
+    // robot without one, the id its selector gives, as on the chip),
+    // `prepare` and `bytecode` as host::power_on does (robot_memory.hpp).
     ArenaSimulation(const Arena &arena,
                     uint32_t seed,
                     const std::vector<uint16_t> &bytecode,
@@ -58,11 +59,23 @@ class ArenaSimulation
         return network_;
     }
 
+    // The node id robot `index` answers to since it last started.
+    uint16_t node_id(size_t index) const;
+
+    // Turns robot `index`'s selector (see EnkiWorld::set_selector).
+    void set_selector(size_t index, uint16_t position);
+
+    // A key press on the remote control, seen by the robots `indices`: RC5
+    // `command` for device `address`, with the toggle bit flipped since the
+    // last press. Throws std::out_of_range for an index without a robot.
+    void press_remote_key(const std::vector<size_t> &indices, uint8_t address, uint8_t command);
+
   private:
     EnkiWorld world_;
     host::Network network_;
     std::vector<std::unique_ptr<host_robot>> robots_;
     uint32_t milliseconds_ = 0;
+    uint8_t remote_toggle_ = 0;
 };
 
 } // namespace aseba::arena

@@ -78,6 +78,11 @@ constexpr double counts_per_g = 768;
 constexpr double gravity = 981; // cm/s²
 constexpr double adc_maximum = 4095;
 
+constexpr uint16_t selector_positions = 16;
+// The boards' cycles in one world step (a whole number for 10 ms).
+constexpr uint64_t step_cycles =
+  uint64_t(EnkiWorld::step_seconds * double(HOST_CYCLES_PER_SECOND) + 0.5);
+
 enum Motor { left_motor, right_motor };
 
 } // namespace
@@ -106,6 +111,13 @@ struct EnkiWorld::RobotState {
     // firmware samples far more often than the world changes.
     uint16_t proximity_lit[EnkiEpuck::ir_count] = {};
     uint16_t acceleration[3] = { 0, 0, 0 };
+    // Where the microphones are during this step, and how they hear the
+    // sound sources from there.
+    std::array<Enki::Point, microphone_places.size()> microphones;
+    std::array<std::vector<Hearing>, microphone_places.size()> hearings;
+    uint16_t selector = 0;
+    RemoteReceiver remote;
+    Battery battery{ BatteryModel{}, 1 };
 };
 
 namespace
@@ -123,7 +135,7 @@ double clamp_adc(double value)
     return std::clamp(std::round(value), 0.0, adc_maximum);
 }
 
-uint16_t world_adc_read(void *context, uint8_t channel, uint64_t)
+uint16_t world_adc_read(void *context, uint8_t channel, uint64_t cycle)
 {
     RobotState &state = state_of(context);
     if (channel >= EPUCK_ADC_PROXIMITY_0) {
@@ -133,15 +145,50 @@ uint16_t world_adc_read(void *context, uint8_t channel, uint64_t)
     }
     if (channel >= EPUCK_ADC_ACCELEROMETER_X && channel <= EPUCK_ADC_ACCELEROMETER_Z)
         return state.acceleration[channel - EPUCK_ADC_ACCELEROMETER_X];
-    if (channel >= EPUCK_ADC_MICROPHONE_0 && channel < EPUCK_ADC_ACCELEROMETER_X)
-        return HOST_FLAT_MICROPHONE;
+    if (channel >= EPUCK_ADC_MICROPHONE_0 && channel < EPUCK_ADC_ACCELEROMETER_X) {
+        const SoundField &field = state.world->sound_field();
+        if (field.silent())
+            return HOST_FLAT_MICROPHONE;
+        return field.reading(state.hearings[channel - EPUCK_ADC_MICROPHONE_0],
+                             double(cycle) / HOST_CYCLES_PER_SECOND);
+    }
     return HOST_FLAT_OTHER_INPUT;
 }
 
-bool world_pin_read(void *, epuck_pin pin, uint64_t)
+bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
 {
-    // Selector 0, battery fine, remote silent, camera lines idle.
-    return pin == EPUCK_PIN_BATTERY_LOW || pin == EPUCK_PIN_REMOTE;
+    RobotState &state = state_of(context);
+    switch (pin) {
+    case EPUCK_PIN_SELECTOR_0:
+    case EPUCK_PIN_SELECTOR_1:
+    case EPUCK_PIN_SELECTOR_2:
+    case EPUCK_PIN_SELECTOR_3:
+        // ⚠ The selector's polarity is not documented (§3.8): a 1 bit reads
+        // high, as the library and our driver take it.
+        return (state.selector >> (pin - EPUCK_PIN_SELECTOR_0)) & 1u;
+    case EPUCK_PIN_BATTERY_LOW: return !state.battery.low();
+    case EPUCK_PIN_REMOTE: return state.remote.level(cycle);
+    default: return false; // the camera's lines are idle
+    }
+}
+
+uint64_t world_next_input_change(void *context, uint64_t after_cycle)
+{
+    uint64_t change = state_of(context).remote.next_change(after_cycle);
+    return change == UINT64_MAX ? HOST_NO_INPUT_CHANGE : change;
+}
+
+// How many motors have their coils powered (the driver powers none at speed 0).
+unsigned motors_turning(const RobotState &state)
+{
+    unsigned turning = 0;
+    for (epuck_pin first : { EPUCK_PIN_MOTOR_LEFT_A, EPUCK_PIN_MOTOR_RIGHT_A })
+        for (int line = 0; line < phase_count; line++)
+            if (state.output[first + line]) {
+                turning++;
+                break;
+            }
+    return turning;
 }
 
 // A motor's phase lines changed: when they show the next pattern of the
@@ -348,6 +395,7 @@ uint16_t accelerometer_reading(unsigned axis, double forward, double leftward)
 
 EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
   : arena_(arena)
+  , sound_field_(arena.sounds)
 {
     world_ = std::make_unique<Enki::World>(arena.width, arena.height, to_enki(arena.wall_color));
     world_->takeObjectOwnership = false;
@@ -376,8 +424,13 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
         auto state = std::make_unique<RobotState>();
         state->world = this;
         state->index = i;
-        state->table = { state.get(),     world_adc_read, world_pin_read,   world_pin_written,
-                         world_i2c_write, world_i2c_read, world_camera_byte };
+        state->table = {
+            state.get(),     world_adc_read, world_pin_read,    world_pin_written,
+            world_i2c_write, world_i2c_read, world_camera_byte, world_next_input_change
+        };
+        state->selector = place.selector;
+        state->battery = Battery(arena.battery, place.battery_charge);
+        place_microphones(*state);
         states_.push_back(std::move(state));
     }
     // Before the first step: no reflection, no impact.
@@ -432,6 +485,8 @@ void EnkiWorld::step()
 {
     for (size_t i = 0; i < robots_.size(); i++) {
         RobotState &state = *states_[i];
+        state.battery.drain(step_seconds, motors_turning(state));
+        state.remote.forget_before(cycles());
         for (int motor : { left_motor, right_motor }) {
             state.wheel_speed[motor] = state.steps[motor] * centimetres_per_step / step_seconds;
             state.steps[motor] = 0;
@@ -472,6 +527,43 @@ void EnkiWorld::update_readings(RobotState &state)
     double leftward = state.impact * forward_axis.perp();
     for (unsigned axis = 0; axis < 3; axis++)
         state.acceleration[axis] = accelerometer_reading(axis, forward, leftward);
+    place_microphones(state);
+}
+
+void EnkiWorld::place_microphones(RobotState &state)
+{
+    const EnkiEpuck &robot = *robots_[state.index];
+    Enki::Vector forward(std::cos(robot.angle), std::sin(robot.angle));
+    for (size_t i = 0; i < microphone_places.size(); i++) {
+        state.microphones[i] = robot.pos + forward * microphone_places[i].forward +
+                               forward.perp() * microphone_places[i].left;
+        sound_field_.hear(state.microphones[i].x, state.microphones[i].y, state.hearings[i]);
+    }
+}
+
+uint64_t EnkiWorld::cycles() const
+{
+    return steps_ * step_cycles;
+}
+
+void EnkiWorld::set_selector(size_t index, uint16_t position)
+{
+    states_.at(index)->selector = uint16_t(position & (selector_positions - 1));
+}
+
+uint16_t EnkiWorld::selector(size_t index) const
+{
+    return states_.at(index)->selector;
+}
+
+void EnkiWorld::send_rc5(size_t index, const Rc5Frame &frame)
+{
+    states_.at(index)->remote.send(frame, cycles());
+}
+
+const Battery &EnkiWorld::battery(size_t index) const
+{
+    return states_.at(index)->battery;
 }
 
 double EnkiWorld::shock_period_at(const Enki::Point &point) const
@@ -495,6 +587,7 @@ void EnkiWorld::place(size_t index, const Pose &pose)
     EnkiEpuck &robot = *robots_.at(index);
     robot.pos = Enki::Point(pose.x, pose.y);
     robot.angle = pose.heading;
+    place_microphones(*states_.at(index));
 }
 
 double EnkiWorld::left_wheel_speed(size_t index) const

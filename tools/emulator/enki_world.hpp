@@ -1,8 +1,10 @@
 // The e-pucks' physical world: one Enki world (Debian libenki) holding the
 // arena and its robots, and for each robot a host_world (host_world.h) that
 // turns Enki's state into what the robot's pins, ADC, I2C camera and pixel
-// port show, and turns the motor phases its firmware drives into wheel
-// speeds. The model and its choices are described in docs/arena-format.md.
+// port show (and the sound field, its selector, remote receiver and
+// battery into its microphones and input pins), and turns the motor phases
+// its firmware drives into wheel speeds. The model and its choices are
+// described in docs/arena-format.md.
 //
 // Debian's Enki 1.6.99 has three defects (../shared/research/enki.md),
 // handled here:
@@ -28,6 +30,9 @@
 #include <enki/robots/DifferentialWheeled.h>
 
 #include "arena_file.hpp"
+#include "battery.hpp"
+#include "remote_control.hpp"
+#include "sound_field.hpp"
 
 extern "C" {
 #include "hal/host/host_world.h"
@@ -145,14 +150,37 @@ class EnkiWorld
     // the 120-row window), 120 pixels from left to right, into `pixels`.
     void camera_row(size_t index, unsigned row, Color *pixels) const;
 
+    // The boards' time at the end of the last step, in processor cycles
+    // (HOST_CYCLES_PER_SECOND a second).
+    uint64_t cycles() const;
+
+    // Turns robot `index`'s selector to `position` (0..15); its firmware
+    // reads the new position from the pins at once.
+    void set_selector(size_t index, uint16_t position);
+    uint16_t selector(size_t index) const;
+
+    // Robot `index`'s IR receiver sees `frame` from now on (after the frames
+    // it is already seeing).
+    void send_rc5(size_t index, const Rc5Frame &frame);
+
+    const Battery &battery(size_t index) const;
+
+    const SoundField &sound_field() const
+    {
+        return sound_field_;
+    }
+
     struct RobotState; // per robot: motor phases, emitters, camera registers
 
   private:
     double shock_period_at(const Enki::Point &point) const;
     // Works out the robot's ADC readings from the world after a step.
     void update_readings(RobotState &state);
+    // Places the robot's microphones where its body is now.
+    void place_microphones(RobotState &state);
 
     Arena arena_;
+    SoundField sound_field_;
     std::unique_ptr<Enki::World> world_;
     // Robots then obstacles, constructed in place in one block.
     void *objects_block_ = nullptr;

@@ -20,8 +20,10 @@
 #include <string>
 #include <vector>
 
+#include "arena_control.hpp"
 #include "arena_file.hpp"
 #include "arena_simulation.hpp"
+#include "control_port.hpp"
 #include "network.hpp"
 #include "network_status.hpp"
 #include "robot_memory.hpp"
@@ -87,6 +89,8 @@ struct Options {
     bool robots_given = false;
     uint32_t seed = 1;
     bool realtime = false;
+    bool drawn_starts = false;
+    uint16_t control_port = 0; // 0: none
 };
 
 [[noreturn]] void fail(const std::string &message)
@@ -184,11 +188,29 @@ Options parse_options(int argc, char **argv)
         "--speed", speed, "arena mode: `max` (as fast as possible, the default) or `realtime`")
       ->check(CLI::IsMember({ "max", "realtime" }))
       ->type_name("SPEED");
+    std::string starts = "placed";
+    app
+      .add_option("--starts",
+                  starts,
+                  "arena mode: `placed` (where the arena file puts the robots, the\n"
+                  "default arena on its ring; the default) or `drawn` (positions and\n"
+                  "headings drawn from the seed, off the coloured areas)")
+      ->check(CLI::IsMember({ "placed", "drawn" }))
+      ->type_name("STARTS");
+    app
+      .add_option("--control",
+                  options.control_port,
+                  "arena mode: take commands on loopback port P, one a line: turn a\n"
+                  "robot's selector, press a remote key for one robot or all, status\n"
+                  "(docs/arena-format.md, \"Run-time control\")")
+      ->check(CLI::Range(1, 65535).description(""))
+      ->type_name("P");
     bool headless = false; // there is no window to hide
     app.add_flag("--headless", headless, "accepted for compatibility: there is no window anyway");
     aseba::command_line::parse_or_exit(app, argc, argv);
     options.robots_given = robots->count() > 0;
     options.realtime = speed == "realtime";
+    options.drawn_starts = starts == "drawn";
     return options;
 }
 
@@ -351,6 +373,8 @@ int run_arena(const Options &options,
             arena = aseba::arena::read_arena_file(options.arena);
         if (options.robots_given)
             aseba::arena::set_robot_count(arena, options.robots);
+        if (options.drawn_starts)
+            aseba::arena::draw_start_positions(arena, options.seed);
     } catch (const std::exception &error) {
         fail(error.what());
     }
@@ -371,6 +395,17 @@ int run_arena(const Options &options,
                            [&](size_t i) -> hal_board & { return simulation.board(i); });
     } catch (const std::exception &error) {
         fail(error.what());
+    }
+    std::unique_ptr<aseba::arena::ControlPort> control;
+    if (options.control_port != 0) {
+        try {
+            control = std::make_unique<aseba::arena::ControlPort>(
+              options.control_port, [&simulation](const std::string &line) {
+                  return aseba::arena::run_control_command(simulation, line);
+              });
+        } catch (const std::exception &error) {
+            fail(error.what());
+        }
     }
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
@@ -394,6 +429,9 @@ int run_arena(const Options &options,
                 options.realtime ? "real-time" : "maximum",
                 options.load.empty() ? "" : ", running ",
                 options.load.c_str());
+    if (control)
+        std::printf("epuck-emu: control commands on 127.0.0.1 port %u, one a line (help)\n",
+                    unsigned(control->port()));
     std::fflush(stdout);
 
     const bool terminal = isatty(STDOUT_FILENO);
@@ -418,6 +456,8 @@ int run_arena(const Options &options,
               int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
             wall = wall_seconds();
         }
+        if (control)
+            control->service();
         if (!options.quiet && wall >= next_status) {
             next_status = wall + status_period;
             double factor = (simulation.seconds() - last_status_simulated) /
