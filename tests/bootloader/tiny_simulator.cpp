@@ -153,7 +153,10 @@ void TinySimulator::run(std::optional<milliseconds> reset_after)
 {
     state_ = board_->powered_off ? State::off : State::application;
     auto reset_at = reset_after ? Clock::now() + *reset_after : Clock::time_point::max();
-    while (!stopping_) {
+    for (;;) {
+        // Once asked to stop, it still takes what the host wrote before (the
+        // end marker of an installer that has just exited), then stops.
+        bool last_round = stopping_;
         auto now = Clock::now();
         if (now >= reset_at) {
             reset_at = Clock::time_point::max();
@@ -167,8 +170,11 @@ void TinySimulator::run(std::optional<milliseconds> reset_after)
                      state_ == State::tiny_waiting ? tiny_deadline_ : Clock::time_point::max() });
         auto timeout = std::chrono::duration_cast<milliseconds>(wake - now).count();
         pollfd waiting{ master_, POLLIN, 0 };
-        if (poll(&waiting, 1, static_cast<int>(std::max<long>(timeout, 0))) <= 0)
+        if (poll(&waiting, 1, static_cast<int>(std::max<long>(last_round ? 0 : timeout, 0))) <= 0) {
+            if (last_round)
+                return;
             continue;
+        }
         uint8_t bytes[256];
         ssize_t count = read(master_, bytes, sizeof bytes);
         for (ssize_t i = 0; i < count; i++)
