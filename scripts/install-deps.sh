@@ -13,6 +13,9 @@ packages=(
     valgrind                                       # instruction counts in benchmarks
     python3                                        # test and benchmark scripts
     libenki-dev                                    # the simulated arena (physics, e-puck sensors)
+    libasio-dev libwebsocketpp-dev                 # the IDE's server (HTTP and WebSocket)
+    nlohmann-json3-dev libcli11-dev libpugixml-dev # JSON, command lines, .aesl projects
+    nodejs                                         # the IDE's page: npm and esbuild build it
 )
 
 missing=()
