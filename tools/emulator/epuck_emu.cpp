@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "arena_feed.hpp"
 #include "arena_file.hpp"
 #include "arena_simulation.hpp"
 #include "network.hpp"
@@ -84,6 +85,9 @@ Arena mode (robots in a physical world, simulated by Enki):
                     no tool sends frames
   --speed S         `max` (as fast as possible, the default) or `realtime`
   --duration S      stop after S simulated seconds
+  --arena-feed P    serve the arena's geometry and the robots' positions
+                    and LEDs on loopback port P, for viewers such as
+                    aseba-ide --arena (docs/ide-protocol.md)
   --headless        accepted for compatibility: there is no window anyway
 
 Without --arena, the robots stand in a flat, empty world (no physics): their
@@ -114,6 +118,7 @@ struct Options {
     bool robots_given = false;
     uint32_t seed = 1;
     bool realtime = false;
+    uint16_t arena_feed = 0; // port of the arena feed; 0: none
 };
 
 [[noreturn]] void fail(const std::string &message)
@@ -165,6 +170,8 @@ Options parse_options(int argc, char **argv)
             if (speed != "max" && speed != "realtime")
                 fail("--speed is max or realtime, not '" + speed + "'");
             options.realtime = speed == "realtime";
+        } else if (argument == "--arena-feed") {
+            options.arena_feed = uint16_t(parse_number("--arena-feed", value(), 1, 65535));
         } else if (argument == "--headless") {
             // There is no window to hide.
         } else if (argument == "--load") {
@@ -292,6 +299,26 @@ aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &b
     return program;
 }
 
+// What the arena feed shows of each robot: its pose, and its LEDs as the
+// board's output pins drive them.
+std::vector<aseba::arena::FeedRobot> feed_robots(aseba::arena::ArenaSimulation &simulation,
+                                                 const aseba::arena::Arena &arena)
+{
+    std::vector<aseba::arena::FeedRobot> robots;
+    for (size_t i = 0; i < simulation.robot_count(); i++) {
+        const hal_board &board = simulation.board(i);
+        aseba::arena::FeedRobot robot;
+        robot.node_id = arena.robots[i].node_id;
+        robot.pose = simulation.world().pose(i);
+        for (size_t led = 0; led < robot.ring.size(); led++)
+            robot.ring[led] = board.outputs[HAL_PIN_LED_0 + led];
+        robot.body = board.outputs[HAL_PIN_BODY_LED];
+        robot.front = board.outputs[HAL_PIN_FRONT_LED];
+        robots.push_back(robot);
+    }
+    return robots;
+}
+
 // Arena mode: the robots in an Enki world, in simulated time (see
 // tools/emulator/arena_simulation.hpp); returns the exit status.
 int run_arena(const Options &options,
@@ -328,6 +355,15 @@ int run_arena(const Options &options,
     } catch (const std::exception &error) {
         fail(error.what());
     }
+    std::unique_ptr<aseba::arena::ArenaFeed> feed;
+    if (options.arena_feed != 0) {
+        try {
+            feed =
+              std::make_unique<aseba::arena::ArenaFeed>(arena, "127.0.0.1", options.arena_feed);
+        } catch (const std::exception &error) {
+            fail(error.what());
+        }
+    }
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
 
@@ -354,6 +390,7 @@ int run_arena(const Options &options,
     const auto start = clock::now();
     auto wall_seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
     double next_status = status_period;
+    double next_feed = 0;
     double last_status_wall = 0;
     double last_status_simulated = 0;
     while (!stop_requested) {
@@ -368,6 +405,13 @@ int run_arena(const Options &options,
             network.service(
               int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
             wall = wall_seconds();
+        }
+        if (feed) {
+            if (wall >= next_feed) {
+                next_feed = wall + aseba::arena::ArenaFeed::PERIOD_SECONDS;
+                feed->publish(simulation.seconds(), feed_robots(simulation, arena));
+            }
+            feed->service();
         }
         if (!options.quiet && wall >= next_status) {
             next_status = wall + status_period;

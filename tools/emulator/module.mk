@@ -10,7 +10,8 @@ aseba_emulator_network_SOURCES := tools/emulator/network.cpp tools/emulator/netw
 # robots' memories (flash images, stored programs) kept between runs.
 LIBRARIES += aseba_arena
 aseba_arena_SOURCES := tools/emulator/arena_file.cpp tools/emulator/enki_world.cpp \
-                       tools/emulator/arena_simulation.cpp tools/emulator/robot_memory.cpp
+                       tools/emulator/arena_simulation.cpp tools/emulator/robot_memory.cpp \
+                       tools/emulator/arena_feed.cpp
 
 # epuck-emu: the e-puck firmware image running on a PC.
 PROGRAMS += epuck-emu
@@ -18,4 +19,4 @@ epuck-emu_SOURCES := tools/emulator/epuck_emu.cpp
 epuck-emu_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_epuck_firmware \
                   aseba_bootloader aseba_epuck_drivers aseba_host_board aseba_compiler aseba_node \
                   aseba_vm aseba_natives
-epuck-emu_LDLIBS := -lenki
+epuck-emu_LDLIBS := -lenki -pthread

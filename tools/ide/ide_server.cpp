@@ -191,6 +191,24 @@ IdeServer::IdeServer(asio::io_context &io, IdeOptions options, std::vector<Stati
         links_.push_back(LinkStatus{ target, false, "connecting" });
     worker_ = std::make_unique<NetworkWorker>(
       io_, options_.targets, std::move(reports), options_.answer_timeout);
+    if (!options_.arena_feed.empty()) {
+        client::TargetAddress feed = client::parse_target(options_.arena_feed);
+        if (feed.kind != client::TargetAddress::Kind::tcp)
+            throw client::TransportError("the arena feed is a TCP address, not '" +
+                                         options_.arena_feed + "'");
+        ArenaReports arena_reports;
+        arena_reports.arena = [this](Json &&geometry) {
+            arena_ = std::move(geometry);
+            broadcast({ { "type", "arena" }, { "arena", arena_ } }, Delivery::essential);
+        };
+        arena_reports.state = [this](Json &&state) { arena_state(std::move(state)); };
+        arena_reports.gone = [this] {
+            arena_ = nullptr;
+            broadcast({ { "type", "arena" }, { "arena", nullptr } }, Delivery::essential);
+        };
+        arena_link_ =
+          std::make_unique<ArenaLink>(io_, feed.host, feed.port, std::move(arena_reports));
+    }
     schedule(log_timer_, LOG_PERIOD, &IdeServer::flush_log);
     schedule(status_timer_, STATUS_PERIOD, &IdeServer::send_status);
 }
@@ -282,6 +300,7 @@ Json IdeServer::hello() const
              { "scripts", scripts },
              { "waitingPrograms", waiting },
              { "projectFile", workspace_.file_path },
+             { "arena", arena_ },
              { "log", Json(log_history_) } };
 }
 
@@ -446,6 +465,21 @@ void IdeServer::variables_read(NodeKey key, std::vector<int16_t> &&values)
     broadcast(message, Delivery::skippable, [key](ConnectionId, const Browser &browser) {
         return browser.watching.count(key) > 0;
     });
+}
+
+// The feed names robots by node id; they are the first target's.
+void IdeServer::arena_state(Json &&state)
+{
+    Json robots = Json::array();
+    for (Json &robot : state["robots"]) {
+        if (!robot.is_object() || !robot["id"].is_number_unsigned())
+            continue;
+        robot["robot"] = robot_name(NodeKey{ 0, robot["id"].get<uint16_t>() });
+        robots.push_back(std::move(robot));
+    }
+    broadcast(
+      { { "type", "arena-state" }, { "time", state.value("time", 0.0) }, { "robots", robots } },
+      Delivery::skippable);
 }
 
 void IdeServer::heard(std::vector<client::ReceivedFrame> &&frames)

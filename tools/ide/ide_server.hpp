@@ -21,6 +21,7 @@
 #include <asio/steady_timer.hpp>
 #include <nlohmann/json.hpp>
 
+#include "arena_link.hpp"
 #include "network_worker.hpp"
 #include "requests.hpp"
 #include "web_server.hpp"
@@ -35,6 +36,9 @@ struct IdeOptions {
     std::vector<std::string> targets; // Aseba networks, transport.hpp syntax
     WebServerOptions web;
     std::string project_path; // an .aesl file to open and save to, or empty
+    // The arena feed of the first target's simulated robots (tcp:HOST;PORT
+    // or HOST:PORT), or empty.
+    std::string arena_feed;
     client::Milliseconds answer_timeout = client::DEFAULT_ANSWER_TIMEOUT;
 };
 
@@ -75,6 +79,9 @@ class IdeServer
     void robot_gone(NodeKey key);
     void links_changed(std::vector<LinkStatus> &&links);
     void variables_read(NodeKey key, std::vector<int16_t> &&values);
+
+    // From the arena feed.
+    void arena_state(Json &&state);
 
     // One handler per request type; each replies now or when the robots
     // have answered.
@@ -137,6 +144,8 @@ class IdeServer
     Json log_pending_ = Json::array();
     asio::steady_timer log_timer_;
     asio::steady_timer status_timer_;
+    Json arena_; // the arena's geometry, or null
+    std::unique_ptr<ArenaLink> arena_link_;
     std::unique_ptr<WebServer> web_;
     // Last: it is stopped first, before what its reports would touch.
     std::unique_ptr<NetworkWorker> worker_;

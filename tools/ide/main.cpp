@@ -47,6 +47,11 @@ int main(int argc, char **argv)
     app.add_option("--project",
                    options.project_path,
                    "an .aesl project to open at start and to save to (created by the first save)");
+    app.add_option(
+      "--arena",
+      options.arena_feed,
+      "the arena feed of simulated robots (epuck-emu --arena-feed PORT), as tcp:HOST;PORT or "
+      "HOST:PORT: shows the arena, with the first target's robots in it");
     app
       .add_option("--timeout", timeout_ms, "how long to wait for a robot's answer, in milliseconds")
       ->capture_default_str()
