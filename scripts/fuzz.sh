@@ -27,15 +27,17 @@ declare -A sources=(
     [client]="$client_sources tests/fuzz/client_fuzzer.cpp"
     [files]="$vm_sources $(library aseba_node) $(library aseba_flash) tools/emulator/arena_file.cpp
              tests/fuzz/files_fuzzer.cpp"
+    [ide]="$client_sources tools/ide/requests.cpp tests/fuzz/ide_requests_fuzzer.cpp"
 )
-declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="" [files]="")
-declare -A max_length=([vm]=1024 [node]=4096 [compiler]=4096 [client]=4096 [files]=8192)
+declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="" [files]="" [ide]="")
+declare -A max_length=([vm]=1024 [node]=4096 [compiler]=4096 [client]=4096 [files]=8192 [ide]=4096)
 # Folders of real inputs a target starts from, besides its own corpus.
 declare -A seeds=([compiler]="examples tests/compiler/programs"
-                  [files]="tests/bootloader/hex tests/arena/data")
+                  [files]="tests/bootloader/hex tests/arena/data"
+                  [ide]="tests/ide_server/data")
 
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files)
+[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files ide)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba)

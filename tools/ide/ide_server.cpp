@@ -893,11 +893,13 @@ void IdeServer::handle(ConnectionId connection, uint64_t id, OpenProjectRequest 
     Workspace opened = workspace_;
     opened.open(request.file_name, request.content);
     workspace_ = std::move(opened);
+    std::map<NodeKey, std::string> names;
+    for (const auto &[key, robot] : robots_)
+        if (robot.present && robot.snapshot.described)
+            names[key] = robot.snapshot.description.name;
     Json matched = Json::array();
-    for (auto &[key, robot] : robots_)
-        if (robot.present && robot.snapshot.described &&
-            workspace_.match(key, robot.snapshot.description.name))
-            matched.push_back(robot_name(key));
+    for (NodeKey key : workspace_.assign(names))
+        matched.push_back(robot_name(key));
     Json welcome = hello();
     broadcast({ { "type", "project" },
                 { "definitions", welcome["definitions"] },

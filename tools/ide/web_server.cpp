@@ -160,6 +160,18 @@ WebServer::WebServer(asio::io_context &io,
     server.set_reuse_addr(true);
     server.set_listen_backlog(asio::socket_base::max_listen_connections);
     server.set_max_message_size(options.max_message_bytes);
+    // After accept: the socket is open only then.
+    server.set_tcp_post_init_handler([&self](Handle handle) {
+        websocketpp::lib::error_code error;
+        Server::connection_ptr connection = self.server.get_con_from_hdl(handle, error);
+        if (error)
+            return;
+        std::error_code ignored;
+        auto &socket = connection->get_socket();
+        socket.set_option(
+          asio::socket_base::send_buffer_size(self.options.socket_send_buffer_bytes), ignored);
+        socket.set_option(asio::ip::tcp::no_delay(true), ignored);
+    });
     server.set_http_handler([&self](Handle handle) { self.serve_http(handle); });
     server.set_validate_handler([&self](Handle handle) { return self.accept_websocket(handle); });
     server.set_open_handler([&self](Handle handle) { self.opened(handle); });

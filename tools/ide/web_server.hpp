@@ -38,6 +38,10 @@ struct WebServerOptions {
     // Above this many bytes waiting for a browser, updates that can be
     // skipped are (the browser is not reading); twice this closes it.
     size_t max_buffered_bytes = 8 * 1024 * 1024;
+    // The kernel's send buffer of each connection: small enough that a
+    // browser that stops reading shows in max_buffered_bytes soon, rather
+    // than after megabytes that the kernel keeps.
+    int socket_send_buffer_bytes = 256 * 1024;
 };
 
 // What the server tells its owner; every call happens on the io_context's

@@ -2,6 +2,7 @@
 
 #include "workspace.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -19,6 +20,31 @@ void Workspace::open(const std::string &file_name, const std::string &text)
     definitions = std::move(read.project.definitions);
     scripts.clear();
     waiting = std::move(read.project.nodes);
+}
+
+std::vector<NodeKey> Workspace::assign(const std::map<NodeKey, std::string> &robots)
+{
+    std::vector<NodeKey> given;
+    for (auto program = waiting.begin(); program != waiting.end();) {
+        std::optional<NodeKey> best;
+        for (const auto &[key, name] : robots) {
+            bool free = std::find(given.begin(), given.end(), key) == given.end();
+            if (!free || name != program->name)
+                continue;
+            if (!best || key.id == program->node_id)
+                best = key;
+            if (key.id == program->node_id)
+                break;
+        }
+        if (!best) {
+            ++program;
+            continue;
+        }
+        scripts[*best] = std::move(program->source);
+        given.push_back(*best);
+        program = waiting.erase(program);
+    }
+    return given;
 }
 
 bool Workspace::match(NodeKey key, const std::string &robot_name)
@@ -42,25 +68,31 @@ bool Workspace::match(NodeKey key, const std::string &robot_name)
 std::string Workspace::to_aesl(const std::map<NodeKey, std::string> &names) const
 {
     // Studio's layout (aesl.md §4): events and constants before the nodes,
-    // each program one text node.
+    // each group after two blank lines and a comment, each program one text
+    // node.
     pugi::xml_document document;
-    pugi::xml_node doctype = document.append_child(pugi::node_doctype);
-    doctype.set_value("aesl-source");
     pugi::xml_node network = document.append_child("network");
-    network.append_child(pugi::node_comment).set_value("list of global events");
+    auto group = [&](const std::string &comment) {
+        network.append_child(pugi::node_pcdata).set_value("\n\n\n");
+        network.append_child(pugi::node_comment).set_value(comment.c_str());
+        network.append_child(pugi::node_pcdata).set_value("\n");
+    };
+    group("list of global events");
     for (const GlobalEvent &event : definitions.events) {
         pugi::xml_node element = network.append_child("event");
         element.append_attribute("size") = event.size;
         element.append_attribute("name") = event.name.c_str();
+        network.append_child(pugi::node_pcdata).set_value("\n");
     }
-    network.append_child(pugi::node_comment).set_value("list of constants");
+    group("list of constants");
     for (const Constant &constant : definitions.constants) {
         pugi::xml_node element = network.append_child("constant");
         element.append_attribute("value") = constant.value;
         element.append_attribute("name") = constant.name.c_str();
+        network.append_child(pugi::node_pcdata).set_value("\n");
     }
     auto add_program = [&](const std::string &name, uint16_t id, const std::string &source) {
-        network.append_child(pugi::node_comment).set_value(("node " + name).c_str());
+        group("node " + name);
         pugi::xml_node element = network.append_child("node");
         element.append_attribute("nodeId") = id;
         element.append_attribute("name") = name.c_str();
@@ -73,9 +105,12 @@ std::string Workspace::to_aesl(const std::map<NodeKey, std::string> &names) cons
     }
     for (const AeslNode &program : waiting)
         add_program(program.name, program.node_id, program.source);
+    network.append_child(pugi::node_pcdata).set_value("\n\n\n");
     std::ostringstream text;
-    document.save(text, "", pugi::format_raw | pugi::format_no_declaration);
-    return text.str() + "\n";
+    text << "<!DOCTYPE aesl-source>\n";
+    network.print(text, "", pugi::format_raw);
+    text << "\n";
+    return text.str();
 }
 
 std::string read_project_file(const std::string &path)

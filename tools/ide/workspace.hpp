@@ -37,9 +37,14 @@ struct Workspace {
     // errors); the programs wait for their robots. Throws ProjectError.
     void open(const std::string &file_name, const std::string &text);
 
-    // Gives a robot that just described itself its program from the opened
-    // project, if one is waiting for it (by name, preferring the same id:
-    // aesl.md §2.2). Returns whether its script changed.
+    // Gives the robots on the network (`robots`: each one's name) the
+    // waiting programs, in file order: each goes to a robot of its name,
+    // preferably of its id (aesl.md §2.2), that got none yet. Returns the
+    // robots given a program.
+    std::vector<NodeKey> assign(const std::map<NodeKey, std::string> &robots);
+
+    // Gives a robot that just described itself a waiting program of its
+    // name, preferably of its id. Returns whether it got one.
     bool match(NodeKey key, const std::string &robot_name);
 
     // The project as .aesl text; `names` gives each robot's name.
