@@ -213,6 +213,10 @@ void NetworkWorker::report_robots()
         auto [entry, is_new] = reported_robots_.try_emplace(key, signature);
         if (!is_new && entry->second == signature)
             continue;
+        // A robot running since before we came says how it runs only when
+        // asked; its answer updates the model like any other.
+        if (node.described && node.compatible && !node.execution && alive)
+            network_->send(key.target, client::NodeCommand{ NODE_MSG_GET_EXECUTION_STATE, key.id });
         entry->second = signature;
         RobotSnapshot snapshot{ key,
                                 node.described,
