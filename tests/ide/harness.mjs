@@ -200,9 +200,13 @@ export function temporaryFolder(prefix = "aseba-ide-test-") {
 
 // Page helpers ------------------------------------------------------------------
 
-// Opens the IDE in a new page and waits for its robots' tabs.
-export async function openIde(browser, url, { robots = 0, viewport = { width: 1366, height: 768 } } = {}) {
+// Opens the IDE in a new page and waits for its robots' tabs; `settings`
+// are the page's remembered settings (storage.js) to start with.
+export async function openIde(browser, url, { robots = 0, viewport = { width: 1366, height: 768 }, settings = {} } = {}) {
     const context = await browser.newContext({ viewport, acceptDownloads: true });
+    await context.addInitScript((values) => {
+        for (const [name, value] of Object.entries(values)) localStorage.setItem(`aseba-ide/setting/${name}`, JSON.stringify(value));
+    }, settings);
     const page = await context.newPage();
     page.errors = [];
     page.on("pageerror", (error) => page.errors.push(error.message));

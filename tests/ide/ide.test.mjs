@@ -111,8 +111,14 @@ async function clickBreakpointGutter(line) {
     await page.mouse.click(point.x, point.y);
 }
 
+// The button whose accessible name starts with `label`.
 async function clickButton(label, target = page) {
     await target.locator(`button[aria-label^="${label}"]`).first().click();
+}
+
+// A button of the robot's own toolbar: load, run, step, store...
+async function clickRobotButton(action) {
+    await page.locator(`.robot-toolbar button.robot-${action}`).click();
 }
 
 test("the page opens with one tab per robot", TIMEOUT, async () => {
@@ -186,15 +192,66 @@ test("a breakpoint stops the robot at its line; step goes to the next line", TIM
     await sleep(200);
     assert.equal((await consoleValues("counter", 1))[0], stopped);
 
-    await clickButton("Step");
+    await clickRobotButton("step");
     await waitFor(async () => (await lineOf(".cm-execution-line")) === LED_LINE, `the execution line ${LED_LINE} after a step`);
     assert.equal((await consoleValues("counter", 1))[0], stopped + 1);
 
     await clickBreakpointGutter(COUNT_LINE);
     await waitFor(async () => (await page.locator(".cm-breakpoint").count()) === 0, "the breakpoint to go");
-    await clickButton("Run");
+    await clickRobotButton("run");
     await waitFor(async () => (await page.locator('[data-testid="robot-state"]').getAttribute("data-state")) === "running", "robot 1 to run again");
     assert.equal(await page.locator(".cm-execution-line").count(), 0);
+});
+
+test("Stop all, Run all and Pause all act on every robot", TIMEOUT, async () => {
+    const frozen = async () => {
+        const first = await consoleValues("counter");
+        await sleep(200);
+        const second = await consoleValues("counter");
+        return first.length === 3 && first.every((value, i) => value === second[i]);
+    };
+    for (const [action, stopped] of [
+        ["Stop all", true],
+        ["Run all", false],
+        ["Pause all", true],
+        ["Run all", false],
+    ]) {
+        await clickButton(action);
+        await waitFor(async () => (await robotStates()).every((state) => (state === "running") === !stopped), `the robots' states after ${action}`);
+        assert.equal(await frozen(), stopped, `${action}: the counters ${stopped ? "stand still" : "grow"}`);
+    }
+});
+
+test("a program stored in flash runs after a reboot", TIMEOUT, async () => {
+    await selectRobot(page, "0:1");
+    await clickRobotButton("store");
+    await page.locator(".message-success", { hasText: "Program written to the flash of e-puck 1" }).waitFor();
+    await waitFor(async () => (await page.locator(".program-status").innerText()).includes("stored in flash"), "the program shown as stored");
+    const before = (await consoleValues("counter", 1))[0];
+    await clickRobotButton("reboot");
+    // Rebooted, it runs the stored program from its start: the count starts again.
+    await waitFor(async () => {
+        const [value] = await consoleValues("counter", 1).catch(() => [undefined]);
+        return value !== undefined && value < before;
+    }, "robot 1 to count again from 0 after its reboot", 15000, 200);
+    const [first] = await consoleValues("counter", 1);
+    await sleep(200);
+    assert.ok((await consoleValues("counter", 1))[0] > first);
+    await waitFor(async () => (await page.locator('[data-testid="robot-state"]').getAttribute("data-state")) === "running", "the page to show robot 1 running");
+});
+
+test("the binary code is saved as an .abo file", TIMEOUT, async () => {
+    const words = Number(/bytecode (\d+)\//.exec((await compileStatus()).text)[1]);
+    const [download] = await Promise.all([page.waitForEvent("download"), clickRobotButton("binary")]);
+    const path = join(folder.path, download.suggestedFilename());
+    await download.saveAs(path);
+    assert.equal(download.suggestedFilename(), "e-puck-1.abo");
+    // The layout of aesl.md §6: magic, ..., node id at 12, length at 18.
+    const bytes = readFileSync(path);
+    assert.deepEqual([...bytes.subarray(0, 4)], [0x41, 0x42, 0x4f, 0x00]);
+    assert.equal(bytes.readUInt16LE(12), 1);
+    assert.equal(bytes.readUInt16LE(18), words);
+    assert.equal(bytes.length, 22 + 2 * words);
 });
 
 test("a variable changed in the page is the robot's", TIMEOUT, async () => {
@@ -221,6 +278,8 @@ test("an event sent from the page reaches the robots and shows in the monitor", 
         return texts.some((text) => /this IDE\s+ping\s+3, 4/.test(text)) && texts.filter((text) => /e-puck \d\s+pong\s+7$/.test(text.trim())).length === 3;
     }, "ping from the IDE and three pongs in the monitor");
     assert.deepEqual(await consoleValues("pings"), [1, 1, 1]);
+    // Each robot sent one event: the network view counts it.
+    await waitFor(async () => (await page.locator('.network-row[data-robot="0:2"] .network-rate').innerText()) !== "–", "robot 2's event rate");
 
     // Filters: one robot's entries only.
     await page.selectOption('select[aria-label="Show the entries of"]', "0:3");
@@ -229,19 +288,50 @@ test("an event sent from the page reaches the robots and shows in the monitor", 
     await page.selectOption('select[aria-label="Show the entries of"]', "");
 });
 
+test("the plot follows a robot's variable and an event's argument", TIMEOUT, async () => {
+    await page.locator('.bottom-tab[data-pane="plot"]').click();
+    for (const [robot, source] of [
+        ["0:1", "variable:counter"],
+        ["0:2", "event:pong"],
+    ]) {
+        await page.selectOption('select[aria-label="Robot of the new series"]', robot);
+        await page.selectOption('select[aria-label="Variable or event of the new series"]', source);
+        await page.fill('input[aria-label="Index in the variable or argument of the event"]', "0");
+        await clickButton("Add the series");
+    }
+    const chips = page.locator(".series-chip");
+    assert.deepEqual(await chips.locator("span:nth-child(2)").allInnerTexts(), ["e-puck 1 · counter", "e-puck 2 · event pong[0]"]);
+    // counter grows on the plot (read while robot 1's tab is not shown).
+    await selectRobot(page, "0:3");
+    const counterSamples = () => page.evaluate(() => window.asebaIde.bottom.plot.series[0].values.slice());
+    await waitFor(async () => (await counterSamples()).length >= 5, "samples of counter");
+    const samples = await counterSamples();
+    assert.ok(samples[samples.length - 1] > samples[0], `counter grows on the plot: ${samples}`);
+    // An event's argument: ping 2, 5 makes robot 2 answer pong 7.
+    await page.locator('.bottom-tab[data-pane="events"]').click();
+    await page.fill('input[aria-label="Arguments of the event"]', "2, 5");
+    await clickButton("Send the event");
+    await page.locator('.bottom-tab[data-pane="plot"]').click();
+    await waitFor(() => page.evaluate(() => window.asebaIde.bottom.plot.series[1].values.includes(7)), "pong 7 on the plot");
+    await waitFor(() => page.evaluate(() => window.asebaIde.bottom.plot.plot.data[0].length > 5), "the chart to hold the samples");
+    for (let i = 0; i < 2; i++) await page.locator('.series-chip button[aria-label^="Remove"]').first().click();
+    assert.equal(await chips.count(), 0);
+    await page.locator('.bottom-tab[data-pane="events"]').click();
+});
+
 test("a run-time error shows at its line", TIMEOUT, async () => {
     await selectRobot(page, "0:3");
     const faulty = "var zero = 0\nvar x = 0\n\nonevent ir_sensors\n    x = 10 / zero\n";
     await setEditorText(page, faulty);
     await waitFor(async () => (await compileStatus()).kind === "ok", "the faulty script to compile");
-    await page.locator(".robot-toolbar button.robot-load").click();
+    await clickRobotButton("load");
     await page.locator(".cm-runtime-error-line").waitFor();
     assert.equal(await lineOf(".cm-runtime-error-line"), 5);
     assert.match(await page.locator(".runtime-status").innerText(), /line 5: division by zero/);
     assert.match(await page.locator('.network-row[data-robot="0:3"] .network-error').innerText(), /division by zero/);
 
     await setEditorText(page, PROGRAM);
-    await page.locator(".robot-toolbar button.robot-load").click();
+    await clickRobotButton("load");
     await waitFor(async () => (await page.locator(".cm-runtime-error-line").count()) === 0, "the error mark to go after a new load");
 });
 
@@ -280,6 +370,8 @@ test("20 tabs at once are all served", { timeout: 60000 }, async () => {
     await waitFor(async () => (await compileStatus(last)).kind === "error", "the 20th tab to compile");
     await setEditorText(last, PROGRAM);
     await waitFor(async () => (await compileStatus(last)).kind === "ok", "the 20th tab to compile again");
+    // The first tab follows: the last text wins everywhere.
+    await waitFor(async () => (await editorText(page)) === PROGRAM, "the first tab to show the 20th tab's last text");
     await context.close();
 });
 

@@ -91,6 +91,15 @@ export class Commands {
         }
     }
 
+    // Puts robot `name`'s script in every other robot's editor: a swarm
+    // usually runs one program.
+    copyToAll(name) {
+        const text = this.sessions.ensure(name).text();
+        const others = this.model.sortedRobots().filter((robot) => robot.robot !== name);
+        for (const robot of others) this.sessions.ensure(robot.robot).setText(text);
+        this.messages.success(`The script of ${this.model.label(name)} is now in the editors of ${plural(others.length, "robot")} (Ctrl+Z in an editor takes it back).`);
+    }
+
     // `action` on each robot of `names`: run, pause, step, stop, reset,
     // store or reboot.
     async control(names, action) {

@@ -13,6 +13,7 @@ export const icons = {
     save: "M5 3h11l3 3v15H5zM8 5v4h7V5zM8 13v6h8v-6z",
     download: "M11 4h2v8.2l3.6-3.6L18 10l-6 6-6-6 1.4-1.4 3.6 3.6zM5 18h14v2H5z",
     binary: "M6 2h8l4 4v16H6zM8 4v16h8V8h-4V4zM9 11h2v6H9zM13 11h2v6h-2z",
+    copy: "M8 3h11v13H8zM10 5v9h7V5zM5 7h2v12h10v2H5z",
     find: "M10 4a6 6 0 1 0 3.7 10.7l4.6 4.6 1.4-1.4-4.6-4.6A6 6 0 0 0 10 4zm0 2a4 4 0 1 1 0 8 4 4 0 0 1 0-8z",
     gotoLine: "M4 5h10v2H4zM4 11h7v2H4zM4 17h10v2H4zM15 8l5 4-5 4z",
     close: "M6.4 5 12 10.6 17.6 5 19 6.4 13.4 12 19 17.6 17.6 19 12 13.4 6.4 19 5 17.6 10.6 12 5 6.4z",

@@ -29,6 +29,9 @@ export class PlotPanel extends Emitter {
         this.window = 30;
         this.plot = null;
         this.redrawTimer = null;
+        // The user zoomed in: the time window stops following until a
+        // double-click zooms out.
+        this.zoomed = false;
 
         this.robotSelect = h("select", { class: "select", label: "Robot of the new series", onChange: () => this.renderSources() });
         this.sourceSelect = h("select", { class: "select", label: "Variable or event of the new series" });
@@ -71,6 +74,10 @@ export class PlotPanel extends Emitter {
         );
         container.append(this.element);
         new ResizeObserver(() => this.resize()).observe(this.chart);
+        this.chart.addEventListener("dblclick", () => {
+            this.zoomed = false;
+            this.redraw();
+        });
         model.on("robots", () => this.renderRobots());
         model.on("robot", (robot) => {
             if (robot.robot === this.robotSelect.value) this.renderSources();
@@ -188,6 +195,7 @@ export class PlotPanel extends Emitter {
 
     setWindow(seconds) {
         this.window = seconds;
+        this.zoomed = false;
         for (const element of this.windowButtons) element.setAttribute("aria-pressed", String(Number(element.dataset.seconds) === seconds));
         this.redraw();
     }
@@ -209,6 +217,7 @@ export class PlotPanel extends Emitter {
                     { class: "series-chip", attrs: { role: "listitem" }, dataset: { key: series.key } },
                     h("span", { class: "series-swatch", style: { background: series.color } }),
                     h("span", { text: this.label(series) }),
+                    (series.valueElement = h("span", { class: "series-value", title: "the value under the cursor, else the latest" })),
                     button({ icon: icons.close, label: `Remove ${this.label(series)} from the plot`, className: "icon-only small", onClick: () => this.remove(series.key) }),
                 ),
             ),
@@ -234,9 +243,19 @@ export class PlotPanel extends Emitter {
             scales: { x: { time: true } },
             series: [{}, ...this.series.map((series) => ({ label: this.label(series), stroke: series.color, width: 1.5, spanGaps: true, points: { show: false } }))],
             axes: [axis, axis],
-            legend: { live: true },
+            // The chips above are the legend; they show the values.
+            legend: { show: false },
             cursor: { drag: { x: true, y: false } },
+            hooks: {
+                setCursor: [(plot) => this.showValues(plot.cursor.idx)],
+                setSelect: [
+                    (plot) => {
+                        if (plot.select.width > 0) this.zoomed = true;
+                    },
+                ],
+            },
         };
+        this.zoomed = false;
         this.plot = new uPlot(options, this.alignedData(), this.chart);
     }
 
@@ -252,6 +271,18 @@ export class PlotPanel extends Emitter {
         return uPlot.join(tables);
     }
 
+    // The values at data index `index` (under the cursor), or the latest.
+    showValues(index) {
+        const data = this.plot?.data;
+        this.series.forEach((series, column) => {
+            let value;
+            if (index !== null && index !== undefined && data) value = data[column + 1][index];
+            else value = series.values[series.values.length - 1];
+            const text = value === null || value === undefined ? "" : `= ${value}`;
+            if (series.valueElement && series.valueElement.textContent !== text) series.valueElement.textContent = text;
+        });
+    }
+
     scheduleRedraw() {
         if (this.redrawTimer) return;
         this.redrawTimer = setTimeout(() => {
@@ -262,15 +293,16 @@ export class PlotPanel extends Emitter {
 
     redraw() {
         if (!this.plot) return;
-        this.plot.setData(this.alignedData());
-        if (this.window > 0) {
+        this.plot.setData(this.alignedData(), !this.zoomed);
+        if (this.plot.cursor.idx === null || this.plot.cursor.idx === undefined) this.showValues(null);
+        if (this.window > 0 && !this.zoomed) {
             const now = Date.now() / 1000;
             this.plot.setScale("x", { min: now - this.window, max: now });
         }
     }
 
     chartSize() {
-        return { width: Math.max(200, this.chart.clientWidth), height: Math.max(100, this.chart.clientHeight - 34) };
+        return { width: Math.max(200, this.chart.clientWidth), height: Math.max(80, this.chart.clientHeight) };
     }
 
     resize() {

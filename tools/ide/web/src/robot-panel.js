@@ -23,6 +23,7 @@ const ROBOT_ACTIONS = [
     { action: "reboot", icon: icons.reboot, text: "Reboot", label: "Reboot the robot" },
     { separator: true },
     { action: "binary", icon: icons.binary, text: ".abo", label: "Save the binary code (.abo file)" },
+    { action: "copy", icon: icons.copy, text: "To all", label: "Copy this script to every robot's editor" },
 ];
 
 function meter(label, used, total) {
@@ -137,6 +138,7 @@ export class RobotPanel {
         if (!name) return;
         if (action === "load") this.commands.load([name]);
         else if (action === "binary") this.commands.saveBinary(name);
+        else if (action === "copy") this.commands.copyToAll(name);
         else this.commands.control([name], action);
     }
 
@@ -160,7 +162,7 @@ export class RobotPanel {
         this.stateBadge.textContent = STATE_TEXT[state] ?? state;
         this.stateBadge.title = robot.line > 0 && state !== "running" ? `at line ${robot.line}` : "";
         const ready = robot.present && robot.described && robot.compatible;
-        for (const element of Object.values(this.actionButtons)) element.disabled = !ready;
+        for (const [action, element] of Object.entries(this.actionButtons)) element.disabled = !ready && action !== "copy";
         this.element.classList.toggle("offline", !robot.present);
         this.variables.setRobot(robot);
         this.events.setRobot(robot);
