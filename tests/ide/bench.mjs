@@ -21,24 +21,25 @@ function median(values) {
 
 // One key typed at the end of a comment line; resolves with the ms from the
 // keydown to the page showing the compile result of the new text.
-function timeKeystroke(page, key) {
-    const measured = page.evaluate(
-        () =>
-            new Promise((resolve, reject) => {
-                const { robotPanel, sessions } = window.asebaIde;
-                const content = robotPanel.view.contentDOM;
-                let start = 0;
-                content.addEventListener("keydown", () => (start = performance.now()), { once: true, capture: true });
-                const stop = sessions.on("status", (session) => {
-                    if (session !== robotPanel.session || !start || session.compiledText !== session.text()) return;
-                    stop();
-                    // Shown once the browser has painted it.
-                    requestAnimationFrame(() => setTimeout(() => resolve(performance.now() - start), 0));
-                });
-                setTimeout(() => reject(new Error("no compile result within 5 s")), 5000);
-            }),
-    );
-    return page.keyboard.press(key).then(() => measured);
+async function timeKeystroke(page, key) {
+    // Listening first, then typing: the page keeps the measure.
+    await page.evaluate(() => {
+        const { robotPanel, sessions } = window.asebaIde;
+        const measure = { start: 0 };
+        measure.done = new Promise((resolve, reject) => {
+            robotPanel.view.contentDOM.addEventListener("keydown", () => (measure.start = performance.now()), { once: true, capture: true });
+            const stop = sessions.on("status", (session) => {
+                if (session !== robotPanel.session || !measure.start || session.compiledText !== session.text()) return;
+                stop();
+                // Shown once the browser has painted it.
+                requestAnimationFrame(() => setTimeout(() => resolve(performance.now() - measure.start), 0));
+            });
+            setTimeout(() => reject(new Error("no compile result within 5 s")), 5000);
+        });
+        window.keystrokeMeasure = measure;
+    });
+    await page.keyboard.press(key);
+    return page.evaluate(() => window.keystrokeMeasure.done);
 }
 
 const session = await paperSession();

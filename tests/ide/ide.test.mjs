@@ -49,12 +49,15 @@ let browser;
 let page;
 let folder;
 let programFile;
+// Every emulator and server started, for their reports at the end.
+const started = [];
 
 before(async () => {
     folder = temporaryFolder();
     programFile = join(folder.path, "program.aesl");
     emulator = await startEmulator({ robots: 3 });
     ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`] });
+    started.push(emulator, ide);
     browser = await launchBrowser();
 });
 
@@ -410,6 +413,7 @@ test("the saved project is what asebamassloader loads", TIMEOUT, async () => {
         }, "the three robots to count again");
     } finally {
         ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`], port: idePort });
+        started.push(ide);
     }
     await page.locator('[data-testid="page-connection"][data-state="open"]').waitFor({ timeout: 20000 });
 });
@@ -424,6 +428,7 @@ test("the page reconnects to a restarted emulator with its text intact", { timeo
     const offlineText = PROGRAM + "# typed while the robots were away\n";
     await setEditorText(page, offlineText);
     emulator = await startEmulator({ robots: 3, port });
+    started.push(emulator);
     await page.locator('.link-state[data-up="true"]').waitFor({ timeout: 20000 });
     await waitFor(async () => (await page.locator(".robot-tab.offline").count()) === 0, "the robots to come back", 20000);
     assert.equal(await editorText(page), offlineText);
@@ -438,6 +443,7 @@ test("the page reconnects to a restarted IDE server and gives it back its text",
     const keptText = PROGRAM + "# typed while the IDE server was away\n";
     await setEditorText(page, keptText);
     ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`], port });
+    started.push(ide);
     await page.locator('[data-testid="page-connection"][data-state="open"]').waitFor({ timeout: 20000 });
     assert.equal(await editorText(page), keptText);
     // The definitions came back with the text: it compiles.
@@ -450,4 +456,13 @@ test("the page reconnects to a restarted IDE server and gives it back its text",
     await fresh.locator('.definitions-constants .definition-row[data-name="STEP"]').waitFor();
     await fresh.context().close();
     assert.deepEqual(page.errors, []);
+});
+
+test("the server and the emulators stop cleanly, with no sanitizer report", TIMEOUT, async () => {
+    await ide.stop();
+    await emulator.stop();
+    for (const child of started) {
+        assert.doesNotMatch(child.output, /AddressSanitizer|LeakSanitizer|runtime error:/, `${child.name} ${child.args.join(" ")}`);
+        assert.ok(child.exitCode === 0 || child.exitCode === "SIGTERM", `${child.name} ended with ${child.exitCode}: ${child.output.slice(-1000)}`);
+    }
 });

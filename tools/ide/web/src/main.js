@@ -50,7 +50,7 @@ root.append(
         "div",
         { class: "workbench" },
         sidebar,
-        splitter({ target: sidebar, axis: "x", min: 200, max: () => window.innerWidth * 0.45, setting: "sidebar-width", initial: 280, label: "Resize the side panel" }),
+        splitter({ target: sidebar, axis: "x", min: 200, max: () => window.innerWidth * 0.45, setting: "sidebar-width", initial: 300, label: "Resize the side panel" }),
         main,
     ),
 );
@@ -69,7 +69,7 @@ const arena = new ArenaView(sidebar, { model, onSelect: select });
 const tabs = new RobotTabs(editorArea, { model, sessions, onSelect: select });
 robotPanel = new RobotPanel(editorArea, { model, sessions, commands });
 main.append(
-    splitter({ target: bottomArea, axis: "y", direction: -1, min: 120, max: () => window.innerHeight * 0.7, setting: "bottom-height", initial: 250, label: "Resize the bottom panel" }),
+    splitter({ target: bottomArea, axis: "y", direction: -1, min: 120, max: () => window.innerHeight * 0.7, setting: "bottom-height", initial: Math.round(Math.min(300, Math.max(180, window.innerHeight * 0.3))), label: "Resize the bottom panel" }),
     bottomArea,
 );
 const bottom = new BottomPanel(bottomArea, { model, commands, messages });

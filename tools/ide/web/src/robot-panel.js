@@ -8,6 +8,7 @@ import { openSearchPanel, gotoLine } from "@codemirror/search";
 import { h, button, setChildren } from "./dom.js";
 import { icons } from "./icons.js";
 import { robotState, STATE_TEXT } from "./model.js";
+import { tokenRange } from "./editor.js";
 import { VariablesPanel } from "./variables-panel.js";
 import { RobotInfoPanel } from "./robot-info.js";
 
@@ -186,7 +187,12 @@ export class RobotPanel {
             children.push(meter("variables", variablesUsed, variablesTotal));
         } else if (status.kind === "error" || status.kind === "refused") {
             children.push(h("span", { class: "status-icon error", text: "✗", attrs: { "aria-hidden": "true" } }));
-            children.push(h("span", { class: "status-text error-text", text: status.text }));
+            const place = status.error?.line > 0 ? status.error : null;
+            children.push(
+                place
+                    ? h("button", { type: "button", class: "status-text error-text go-to-error", text: status.text, title: "Go to the error", onClick: () => this.goTo(place) })
+                    : h("span", { class: "status-text error-text", text: status.text }),
+            );
         } else if (robot && !robot.present) {
             children.push(h("span", { class: "status-text muted", text: "The robot is offline: your text is kept, and compiled when it comes back." }));
         } else {
@@ -212,6 +218,13 @@ export class RobotPanel {
             if (robot.program.stored) program += ", stored in flash";
         }
         this.programStatus.textContent = program;
+    }
+
+    // Puts the cursor on the token at {line, column} and shows it.
+    goTo({ line, column }) {
+        const { from, to } = tokenRange(this.view.state.doc, line, column);
+        this.view.dispatch({ selection: { anchor: from, head: to }, effects: EditorView.scrollIntoView(from, { y: "center" }) });
+        this.view.focus();
     }
 
     completionNames() {
