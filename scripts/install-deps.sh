@@ -16,6 +16,7 @@ packages=(
     libasio-dev libwebsocketpp-dev                 # the IDE's server (HTTP and WebSocket)
     nlohmann-json3-dev libcli11-dev libpugixml-dev # JSON, command lines, .aesl projects
     nodejs                                         # the IDE's page: npm and esbuild build it
+    chromium                                       # the IDE's browser tests (driven by npm playwright-core)
 )
 
 missing=()

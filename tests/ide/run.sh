@@ -22,7 +22,7 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
 # node's test runner prints its counts as "ℹ pass N" and "ℹ fail N".
-timeout 300 node --test --test-reporter=spec --test-concurrency=1 tests/ide/ide.test.mjs 2>&1 | tee "$log"
+timeout 300 node --test --test-reporter=spec tests/ide/ide.test.mjs 2>&1 | tee "$log"
 status=${PIPESTATUS[0]}
 good=$(sed -n 's/^ℹ pass \([0-9]*\)$/\1/p' "$log" | tail -n1)
 bad=$(sed -n 's/^ℹ fail \([0-9]*\)$/\1/p' "$log" | tail -n1)
