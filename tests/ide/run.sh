@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The IDE's browser tests: Debian's Chromium, headless, driven by
 # playwright-core, on the page that aseba-ide serves, against simulated
-# e-pucks (tests/ide/ide.test.mjs). Ends with "N passed, N failed".
+# e-pucks (tests/ide/ide.test.mjs), and the page's pure parts without a browser
+# (tests/ide/page-units.test.mjs). Ends with "N passed, N failed".
 #
 # Usage: tests/ide/run.sh [--screenshots] [BIN_DIR]
 #   BIN_DIR        where aseba-ide, epuck-emu and aseba are (default build/host/bin)
@@ -22,13 +23,13 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
 # node's test runner prints its counts as "ℹ pass N" and "ℹ fail N".
-timeout 300 node --test --test-reporter=spec tests/ide/ide.test.mjs 2>&1 | tee "$log"
+timeout 300 node --test --test-reporter=spec tests/ide/page-units.test.mjs tests/ide/ide.test.mjs 2>&1 | tee "$log"
 status=${PIPESTATUS[0]}
 good=$(sed -n 's/^ℹ pass \([0-9]*\)$/\1/p' "$log" | tail -n1)
 bad=$(sed -n 's/^ℹ fail \([0-9]*\)$/\1/p' "$log" | tail -n1)
 cancelled=$(sed -n 's/^ℹ cancelled \([0-9]*\)$/\1/p' "$log" | tail -n1)
 if [ -z "$good" ]; then
-    echo "ide.test.mjs: no test summary (exit status $status)"
+    echo "tests/ide: no test summary (exit status $status)"
     failed=$((failed + 1))
 else
     passed=$((passed + good))

@@ -3,7 +3,7 @@
 // numbers in three bases, operators), indentation of blocks, and
 // completion of the robot's names.
 
-import { StreamLanguage, LanguageSupport, HighlightStyle, syntaxHighlighting } from "@codemirror/language";
+import { StreamLanguage, StringStream, LanguageSupport, HighlightStyle, syntaxHighlighting } from "@codemirror/language";
 import { tags } from "@lezer/highlight";
 
 // Every keyword of the language, by role.
@@ -108,6 +108,22 @@ const asebaParser = {
 };
 
 export const asebaLanguage = StreamLanguage.define(asebaParser);
+
+// The tokens of `text` as the editor colours them: [[text, kind], ...],
+// spaces left out (for tests).
+export function asebaTokens(text) {
+    const state = asebaParser.startState();
+    const tokens = [];
+    for (const line of text.split("\n")) {
+        const stream = new StringStream(line, 4, 4);
+        while (!stream.eol()) {
+            const kind = asebaParser.token(stream, state);
+            if (kind) tokens.push([stream.current(), kind]);
+            stream.start = stream.pos;
+        }
+    }
+    return tokens;
+}
 
 // Colours by CSS variables, so that the page's theme decides.
 const highlightStyle = HighlightStyle.define([

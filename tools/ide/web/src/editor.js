@@ -30,7 +30,7 @@ import { lintGutter, setDiagnostics, lintKeymap } from "@codemirror/lint";
 import { aseba } from "./aseba-language.js";
 
 // Marks changes that come from the server (another tab, a project), not
-// from the user's typing.
+// from the user's typing: they are not sent back.
 export const fromServer = Annotation.define();
 
 // --- breakpoints ---------------------------------------------------------
@@ -300,7 +300,7 @@ export function editorExtensions(hooks) {
             indentWithTab,
         ]),
         EditorView.updateListener.of((update) => {
-            if (update.docChanged) hooks.onChange(update);
+            if (update.docChanged && !update.transactions.some((transaction) => transaction.annotation(fromServer))) hooks.onChange(update);
         }),
     ];
 }

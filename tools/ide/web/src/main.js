@@ -138,7 +138,7 @@ connection.on("robot", ({ robot }) => {
     if (ready && !wasReady) session.recompile();
     showExecution(robot);
     ensureSelection();
-    if (robot.present !== previous?.present || robot.variables !== previous?.variables) updateWatch();
+    updateWatch();
 });
 connection.on("script", (message) => sessions.applyScript(message.robot, message.source));
 connection.on("definitions", (message) => {

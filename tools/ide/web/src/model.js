@@ -101,7 +101,8 @@ export class Model extends Emitter {
         return several ? `${name} ${robot.id} (network ${robot.target})` : `${name} ${robot.id}`;
     }
 
-    // The name of global event `id` in the current definitions.
+    // The name of a log entry's event: the server's, else the current
+    // definitions', else its number.
     eventName(entry) {
         return entry.name ?? this.definitions.events[entry.event]?.name ?? `event ${entry.event}`;
     }

@@ -112,19 +112,28 @@ export class RobotSession {
     replaceFromServer(source) {
         this.syncedText = source;
         this.compiledText = null;
+        this.remoteUntil = Date.now() + REMOTE_QUIET_MS;
         if (source !== this.text())
             this.dispatch({ changes: { from: 0, to: this.state.doc.length, insert: source }, annotations: fromServer.of(true) });
         this.persist();
-        this.remoteUntil = Date.now() + REMOTE_QUIET_MS;
         clearTimeout(this.remoteQuietTimer);
         this.remoteQuietTimer = setTimeout(() => this.pump(), REMOTE_QUIET_MS + 10);
     }
 
     // A text we sent a moment ago and have since changed.
     isEcho(source) {
-        const now = Date.now();
-        this.sent = this.sent.filter((entry) => now - entry.time < ECHO_WINDOW_MS);
+        this.forgetOldSends();
         return source !== this.text() && this.sent.slice(0, -1).some((entry) => entry.text === source);
+    }
+
+    rememberSend(text) {
+        this.forgetOldSends();
+        this.sent.push({ text, time: Date.now() });
+    }
+
+    forgetOldSends() {
+        const now = Date.now();
+        while (this.sent.length && now - this.sent[0].time >= ECHO_WINDOW_MS) this.sent.shift();
     }
 
     // Compiles again (definitions changed, the robot came back).
@@ -151,7 +160,7 @@ export class RobotSession {
             return;
         }
         const request = { type: compile ? "compile" : "script", robot: this.name, source: text };
-        this.sent.push({ text, time: Date.now() });
+        this.rememberSend(text);
         this.flight = this.sessions.connection
             .request(request)
             .then(
@@ -184,7 +193,7 @@ export class RobotSession {
         while (this.flight) await this.flight;
         const text = this.text();
         if (text === this.syncedText || utf8Length(text) > MAX_SCRIPT_BYTES) return;
-        this.sent.push({ text, time: Date.now() });
+        this.rememberSend(text);
         await this.sessions.connection.request({ type: "script", robot: this.name, source: text });
         this.acknowledged(text, false);
     }
