@@ -161,6 +161,12 @@ test("a compile error is marked in red at its line, and goes when fixed", TIMEOU
     assert.equal(await lineOf(".cm-lintRange-error"), COUNT_LINE);
     assert.equal(await page.locator(".cm-lintRange-error").first().innerText(), "undefinedThing");
     assert.equal(await page.locator('.robot-tab[data-robot="0:1"] .tab-error').isVisible(), true);
+    // Loading it is refused, with the reason in the message bar.
+    await clickButton("Load: compile this script");
+    const refusal = page.locator(".message-error", { hasText: "Nothing was loaded: a program does not compile." });
+    await refusal.waitFor();
+    assert.match(await refusal.innerText(), new RegExp(`e-puck 1: line ${COUNT_LINE}, column ${column}: .*undefinedThing`));
+    await refusal.locator(".message-close").click();
 
     await setEditorText(page, PROGRAM);
     await waitFor(async () => (await compileStatus()).kind === "ok", "the fixed script to compile");
@@ -346,6 +352,36 @@ test("another tab's edit replaces the text of a tab with nothing unsent", TIMEOU
     await setEditorText(other, edited);
     await waitFor(async () => (await editorText(page)) === edited, "the first tab to show the other tab's text");
     await other.context().close();
+});
+
+test("another tab's text does not replace unsent changes; the last sent wins", TIMEOUT, async () => {
+    const other = await openIde(browser, ide.url, { robots: 3 });
+    await selectRobot(other, "0:3");
+    await selectRobot(page, "0:3");
+    // This page's requests wait, as on a slow network: its change is unsent.
+    await page.evaluate(() => {
+        const connection = window.asebaIde.connection;
+        const send = connection.request.bind(connection);
+        let release;
+        const released = new Promise((resolve) => (release = resolve));
+        window.releaseRequests = () => {
+            connection.request = send;
+            release();
+        };
+        connection.request = (message) => released.then(() => send(message));
+    });
+    const ours = PROGRAM.replace("# counts", "# ours; counts");
+    const theirs = PROGRAM.replace("# counts", "# theirs; counts");
+    await setEditorText(page, ours);
+    await setEditorText(other, theirs);
+    await sleep(600);
+    assert.equal(await editorText(page), ours, "the unsent text stays");
+    await page.evaluate(() => window.releaseRequests());
+    // Ours reaches the server after theirs: the other tab follows.
+    await waitFor(async () => (await editorText(other)) === ours, "the other tab to show the text sent last");
+    assert.equal(await editorText(page), ours);
+    await other.context().close();
+    await setEditorText(page, PROGRAM);
 });
 
 test("a huge paste gets a clear error and the connection stays", TIMEOUT, async () => {
