@@ -4,7 +4,7 @@
 // headless Chromium driven by playwright-core.
 
 import { spawn, execFile } from "node:child_process";
-import { createServer } from "node:net";
+import { createServer, connect } from "node:net";
 import { mkdtempSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
 import { join, resolve, dirname } from "node:path";
@@ -64,16 +64,13 @@ export async function waitFor(check, what, timeout = 10000, interval = 50) {
     }
 }
 
-// A program running in the background, with its output collected: `name`
-// in BIN, or a program of the system (an absolute path or in PATH when
-// `system` is true).
+// A program of BIN running in the background, with its output collected.
 export class Child {
-    constructor(name, args, { system = false } = {}) {
+    constructor(name, args) {
         this.name = name;
         this.args = args;
         this.output = "";
-        const env = { ...process.env, LC_ALL: "en_US.UTF-8" };
-        this.process = spawn(system ? name : join(BIN, name), args, { stdio: ["ignore", "pipe", "pipe"], env });
+        this.process = spawn(join(BIN, name), args, { stdio: ["ignore", "pipe", "pipe"] });
         children.add(this.process);
         this.exited = new Promise((done) =>
             this.process.on("exit", (code, signal) => {
@@ -140,7 +137,7 @@ export function run(program, args, timeout = 20000) {
 }
 
 // epuck-emu on a free port: `robots` robots, or the arena (with its feed).
-export async function startEmulator({ robots = 3, arena = null, port = null, load = null, extra = [] } = {}) {
+export async function startEmulator({ robots = 3, arena = null, port = null } = {}) {
     port = port ?? (await freePort());
     const args = ["--port", String(port), "--robots", String(robots), "--quiet"];
     let feedPort = null;
@@ -148,8 +145,6 @@ export async function startEmulator({ robots = 3, arena = null, port = null, loa
         feedPort = await freePort();
         args.push("--arena", arena, "--speed", "realtime", "--arena-feed", String(feedPort));
     }
-    if (load) args.push("--load", load);
-    args.push(...extra);
     const child = new Child("epuck-emu", args);
     // Listening once a client can connect.
     await waitFor(() => canConnect(port), `epuck-emu on port ${port}`, 15000, 100);
@@ -160,23 +155,20 @@ export async function startEmulator({ robots = 3, arena = null, port = null, loa
 
 function canConnect(port) {
     return new Promise((done) => {
-        import("node:net").then(({ connect }) => {
-            const socket = connect(port, "127.0.0.1");
-            socket.on("connect", () => {
-                socket.destroy();
-                done(true);
-            });
-            socket.on("error", () => done(false));
+        const socket = connect(port, "127.0.0.1");
+        socket.on("connect", () => {
+            socket.destroy();
+            done(true);
         });
+        socket.on("error", () => done(false));
     });
 }
 
 // aseba-ide on a free port, joined to `targets`.
-export async function startIde({ targets, port = null, arenaFeed = null, project = null } = {}) {
+export async function startIde({ targets, port = null, arenaFeed = null } = {}) {
     port = port ?? (await freePort());
     const args = ["--port", String(port), ...targets];
     if (arenaFeed) args.push("--arena", `tcp:localhost;${arenaFeed}`);
-    if (project) args.push("--project", project);
     const child = new Child("aseba-ide", args);
     await child.ready(/open http:\/\//);
     child.port = port;
