@@ -12,15 +12,21 @@ shift
 network_port=33333
 feed_port=33334
 ide_port=${IDE_PORT:-33380}
+# The IDE edits a copy of the controller, so that Save never changes the
+# example; the copy is kept between runs.
+project=$1/../run/paper-annex.aesl
+mkdir -p "$(dirname "$project")"
+[ -e "$project" ] || cp examples/paper-annex.aesl "$project"
 
-"$bin/aseba-ide" --port "$ide_port" --arena "localhost:$feed_port" "tcp:localhost;$network_port" &
+"$bin/aseba-ide" --port "$ide_port" --arena "localhost:$feed_port" --project "$project" \
+    "tcp:localhost;$network_port" &
 ide=$!
 trap 'kill "$ide" 2>/dev/null || true; wait "$ide" 2>/dev/null || true' EXIT
 sleep 0.3
 kill -0 "$ide" 2>/dev/null || { echo "run: the IDE could not start (is port $ide_port in use? IDE_PORT=N picks another)"; exit 1; }
 
 echo "Six e-pucks in the default arena running examples/paper-annex.aesl."
-echo "  The group IDE:  http://localhost:$ide_port/   (open it in a browser)"
+echo "  The group IDE:  http://localhost:$ide_port/   (open it in a browser; Save writes $project)"
 echo "  Other tools:    asebastudio 'tcp:localhost;$network_port'   or   $bin/aseba nodes"
 echo "Alarms: 'bad N (colour:count ...)', colours 0 red, 1 green, 2 blue. Ctrl-C stops."
 "$bin/epuck-emu" --arena default --speed realtime --port "$network_port" --arena-feed "$feed_port" \

@@ -79,41 +79,42 @@ TEST(Workspace, AMalformedProjectNamesTheFileAndLineAndChangesNothing)
     EXPECT_EQ(workspace.definitions.events.size(), before.definitions.events.size());
 }
 
-TEST(Workspace, ProgramsGoToRobotsByNamePreferringTheSameId)
+TEST(Workspace, ARobotGetsTheProgramOfItsIdElseTheFirstOfItsName)
 {
     Workspace workspace;
     workspace.open("group.aesl", R"(<!DOCTYPE aesl-source><network>
 <node nodeId="1" name="e-puck">one</node>
 <node nodeId="2" name="e-puck">two</node>
 <node nodeId="9" name="thymio-II">thymio</node></network>)");
-    // Node 2 gets the program written for id 2, node 5 the first one left.
+    // As Studio, by name, preferring the same id (aesl.md §2.2).
     EXPECT_TRUE(workspace.match(NodeKey{ 0, 2 }, "e-puck"));
     EXPECT_EQ(workspace.scripts[(NodeKey{ 0, 2 })], "two");
+    // A robot with no program of its own gets the first of its name, as
+    // asebamassloader loads it into every robot of that name.
     EXPECT_TRUE(workspace.match(NodeKey{ 0, 5 }, "e-puck"));
     EXPECT_EQ(workspace.scripts[(NodeKey{ 0, 5 })], "one");
-    // Each program goes to one robot at most (Studio fills a tab once).
-    EXPECT_FALSE(workspace.match(NodeKey{ 0, 6 }, "e-puck"));
     EXPECT_FALSE(workspace.match(NodeKey{ 0, 7 }, "dummynode"));
+    // A robot that has a script keeps it.
+    workspace.scripts[(NodeKey{ 0, 6 })] = "mine";
+    EXPECT_FALSE(workspace.match(NodeKey{ 0, 6 }, "e-puck"));
+    EXPECT_EQ(workspace.scripts[(NodeKey{ 0, 6 })], "mine");
+    // "one" and "two" were taken; the Thymio's program waits for a Thymio.
     ASSERT_EQ(workspace.waiting.size(), 1u);
     EXPECT_EQ(workspace.waiting[0].name, "thymio-II");
 }
 
-TEST(Workspace, AnOpenedProjectGoesToTheRobotsOnTheNetworkAsStudioMatchesThem)
+TEST(Workspace, AProjectOfOneProgramGoesToTheWholeSwarm)
 {
     Workspace workspace;
-    workspace.open("group.aesl", R"(<!DOCTYPE aesl-source><network>
-<node nodeId="2" name="e-puck">for two</node>
-<node nodeId="8" name="e-puck">for eight</node>
-<node nodeId="9" name="thymio-II">thymio</node></network>)");
-    // Robot 1 comes first in key order, yet the program for id 2 goes to
-    // robot 2; the one for id 8 goes to the robot left, robot 1.
-    std::vector<NodeKey> given =
-      workspace.assign({ { NodeKey{ 0, 1 }, "e-puck" }, { NodeKey{ 0, 2 }, "e-puck" } });
-    EXPECT_EQ(given.size(), 2u);
-    EXPECT_EQ(workspace.scripts[(NodeKey{ 0, 2 })], "for two");
-    EXPECT_EQ(workspace.scripts[(NodeKey{ 0, 1 })], "for eight");
-    ASSERT_EQ(workspace.waiting.size(), 1u);
-    EXPECT_EQ(workspace.waiting[0].name, "thymio-II");
+    workspace.open("annex.aesl", R"(<!DOCTYPE aesl-source><network>
+<node nodeId="1" name="e-puck">controller</node></network>)");
+    std::map<NodeKey, std::string> robots;
+    for (uint16_t id = 1; id <= 6; id++)
+        robots[NodeKey{ 0, id }] = "e-puck";
+    EXPECT_EQ(workspace.assign(robots).size(), 6u);
+    for (uint16_t id = 1; id <= 6; id++)
+        EXPECT_EQ(workspace.scripts[(NodeKey{ 0, id })], "controller") << "robot " << id;
+    EXPECT_TRUE(workspace.waiting.empty());
 }
 
 TEST(Workspace, WhatIsSavedReadsBackTheSameAndKeepsTheWaitingPrograms)

@@ -620,7 +620,8 @@ void IdeServer::remember_script(ConnectionId from, NodeKey key, const std::strin
 
 void IdeServer::handle(ConnectionId connection, uint64_t id, CompileRequest &request)
 {
-    remember_script(connection, request.robot, request.source);
+    if (request.remember)
+        remember_script(connection, request.robot, request.source);
     Robot &robot = ready_robot(request.robot);
     auto program = compile_for(robot, request.source);
     reply(

@@ -208,7 +208,8 @@ Request request_of_type(const std::string &type, const Json &message)
 {
     if (type == "compile")
         return CompileRequest{ robot_value(field(message, "robot")),
-                               text_field(message, "source", MAX_SCRIPT_BYTES) };
+                               text_field(message, "source", MAX_SCRIPT_BYTES),
+                               bool_field(message, "remember", true) };
     if (type == "script")
         return ScriptRequest{ robot_value(field(message, "robot")),
                               text_field(message, "source", MAX_SCRIPT_BYTES) };

@@ -42,6 +42,9 @@ std::string robot_name(NodeKey key);
 struct CompileRequest {
     NodeKey robot;
     std::string source;
+    // Whether `source` becomes the robot's script; false for a text the page
+    // got from the server (so it never sends back a text already replaced).
+    bool remember = true;
 };
 
 struct LoadRequest {

@@ -19,50 +19,48 @@ void Workspace::open(const std::string &file_name, const std::string &text)
         throw ProjectError(file_name + ":" + std::to_string(read.error_line) + ": " + read.error);
     definitions = std::move(read.project.definitions);
     scripts.clear();
-    waiting = std::move(read.project.nodes);
+    programs = std::move(read.project.nodes);
+    waiting = programs;
+}
+
+const AeslNode *Workspace::program_for(NodeKey key, const std::string &robot_name) const
+{
+    const AeslNode *best = nullptr;
+    for (const AeslNode &program : programs) {
+        if (program.name != robot_name)
+            continue;
+        if (program.node_id == key.id)
+            return &program;
+        if (!best)
+            best = &program;
+    }
+    return best;
+}
+
+bool Workspace::match(NodeKey key, const std::string &robot_name)
+{
+    if (scripts.count(key))
+        return false;
+    const AeslNode *program = program_for(key, robot_name);
+    if (!program)
+        return false;
+    scripts[key] = program->source;
+    waiting.erase(std::remove_if(waiting.begin(),
+                                 waiting.end(),
+                                 [&](const AeslNode &left) {
+                                     return left.name == program->name && left.node_id == program->node_id;
+                                 }),
+                  waiting.end());
+    return true;
 }
 
 std::vector<NodeKey> Workspace::assign(const std::map<NodeKey, std::string> &robots)
 {
     std::vector<NodeKey> given;
-    for (auto program = waiting.begin(); program != waiting.end();) {
-        std::optional<NodeKey> best;
-        for (const auto &[key, name] : robots) {
-            bool free = std::find(given.begin(), given.end(), key) == given.end();
-            if (!free || name != program->name)
-                continue;
-            if (!best || key.id == program->node_id)
-                best = key;
-            if (key.id == program->node_id)
-                break;
-        }
-        if (!best) {
-            ++program;
-            continue;
-        }
-        scripts[*best] = std::move(program->source);
-        given.push_back(*best);
-        program = waiting.erase(program);
-    }
+    for (const auto &[key, name] : robots)
+        if (match(key, name))
+            given.push_back(key);
     return given;
-}
-
-bool Workspace::match(NodeKey key, const std::string &robot_name)
-{
-    auto best = waiting.end();
-    for (auto program = waiting.begin(); program != waiting.end(); ++program) {
-        if (program->name != robot_name)
-            continue;
-        if (best == waiting.end() || program->node_id == key.id)
-            best = program;
-        if (program->node_id == key.id)
-            break;
-    }
-    if (best == waiting.end())
-        return false;
-    scripts[key] = std::move(best->source);
-    waiting.erase(best);
-    return true;
 }
 
 std::string Workspace::to_aesl(const std::map<NodeKey, std::string> &names) const

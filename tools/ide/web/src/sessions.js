@@ -15,14 +15,6 @@ import { loadScript, saveScript } from "./storage.js";
 export const MAX_SCRIPT_BYTES = 256 * 1024;
 // How long typing may go on before the text is written to localStorage.
 const PERSIST_DELAY_MS = 200;
-// A `compile` also makes its text the robot's script on the server. A text
-// that came from another tab is compiled (for its result) only once that
-// tab has been quiet this long, so that this tab never sends back a text
-// the other has already replaced.
-const REMOTE_QUIET_MS = 400;
-// A text of ours that comes back from the server this soon after we sent
-// it, once we have a newer one, is an echo of the past, not an edit.
-const ECHO_WINDOW_MS = 3000;
 
 function utf8Length(text) {
     // Cheap for the usual script; exact when it could matter.
@@ -61,9 +53,6 @@ export class RobotSession {
         this.status = { kind: "idle", text: "" };
         this.runtimeError = null;
         this.executionLine = 0; // where the robot stands, 0: not shown
-        this.remoteQuietTimer = null;
-        this.remoteUntil = 0; // compile server texts only after this time
-        this.sent = []; // [{text, time}] recently sent, newest last
     }
 
     get state() {
@@ -112,28 +101,10 @@ export class RobotSession {
     replaceFromServer(source) {
         this.syncedText = source;
         this.compiledText = null;
-        this.remoteUntil = Date.now() + REMOTE_QUIET_MS;
         if (source !== this.text())
             this.dispatch({ changes: { from: 0, to: this.state.doc.length, insert: source }, annotations: fromServer.of(true) });
         this.persist();
-        clearTimeout(this.remoteQuietTimer);
-        this.remoteQuietTimer = setTimeout(() => this.pump(), REMOTE_QUIET_MS + 10);
-    }
-
-    // A text we sent a moment ago and have since changed.
-    isEcho(source) {
-        this.forgetOldSends();
-        return source !== this.text() && this.sent.slice(0, -1).some((entry) => entry.text === source);
-    }
-
-    rememberSend(text) {
-        this.forgetOldSends();
-        this.sent.push({ text, time: Date.now() });
-    }
-
-    forgetOldSends() {
-        const now = Date.now();
-        while (this.sent.length && now - this.sent[0].time >= ECHO_WINDOW_MS) this.sent.shift();
+        this.pump();
     }
 
     // Compiles again (definitions changed, the robot came back).
@@ -147,8 +118,7 @@ export class RobotSession {
     pump() {
         if (this.flight || !this.sessions.connection.open) return;
         const text = this.text();
-        let compile = this.sessions.canCompile(this.name) && text !== this.compiledText;
-        if (compile && text === this.syncedText && Date.now() < this.remoteUntil) compile = false;
+        const compile = this.sessions.canCompile(this.name) && text !== this.compiledText;
         if (!compile && text === this.syncedText) return;
         const bytes = utf8Length(text);
         if (bytes > MAX_SCRIPT_BYTES) {
@@ -160,7 +130,9 @@ export class RobotSession {
             return;
         }
         const request = { type: compile ? "compile" : "script", robot: this.name, source: text };
-        this.rememberSend(text);
+        // The server's own text is compiled for its result only: sending it
+        // back as ours could undo a newer text of another tab.
+        if (compile && text === this.syncedText) request.remember = false;
         this.flight = this.sessions.connection
             .request(request)
             .then(
@@ -193,7 +165,6 @@ export class RobotSession {
         while (this.flight) await this.flight;
         const text = this.text();
         if (text === this.syncedText || utf8Length(text) > MAX_SCRIPT_BYTES) return;
-        this.rememberSend(text);
         await this.sessions.connection.request({ type: "script", robot: this.name, source: text });
         this.acknowledged(text, false);
     }
@@ -331,12 +302,6 @@ export class Sessions extends Emitter {
         this.serverScripts[name] = source;
         const session = this.sessions.get(name);
         if (!session) return;
-        if (session.isEcho(source)) {
-            // The server went back to an older text of ours: ours again.
-            session.syncedText = source;
-            session.pump();
-            return;
-        }
         if (session.hasUnsentChange()) return;
         session.replaceFromServer(source);
     }
