@@ -7,6 +7,8 @@
 #   make cross-check   the portable layers with 16- and 32-bit cross compilers
 #   make fuzz          every fuzz target for FUZZ_SECONDS (default 60) each
 #   make bench         performance figures beside the reference (docs/benchmarks.md)
+#   make dspic30       the e-puck's images, with Microchip XC16 (hal/dspic30/module.mk)
+#   make stm32f4       the STM32F4 image, run by QEMU in the tests (hal/stm32f4/module.mk)
 #   make run           the main job
 #   make format        clang-format every source file
 
@@ -22,6 +24,10 @@ WARNINGS := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wundef
 C_STANDARD := -std=gnu99
 CXX_STANDARD := -std=c++20
 INCLUDES := -I. -Ivm -Inative_functions
+# Every build names its target's one configuration header (docs/porting.md);
+# the host variants are the host target, the simulated e-puck.
+HOST_TARGET_CONFIG := '-DTARGET_CONFIG="hal/host/host_config.h"'
+INCLUDES += $(HOST_TARGET_CONFIG)
 
 # Build variants: the plain host build, and the one the tests run in.
 VARIANTS := host host-sanitize
@@ -99,10 +105,9 @@ deps:
 	@scripts/install-deps.sh
 
 # The portable layers must build warning-free where `int` is 16 bits (the
-# dsPIC's case, here avr-gcc) and on a 32-bit microcontroller. *_dspic30.c
-# files use XC16's DSP builtins: only the dsPIC30F build compiles them.
-PORTABLE_SOURCES := $(filter-out %_dspic30.c,$(wildcard vm/*.c native_functions/*.c drivers/epuck/*.c \
-                                                        bootloader/*.c))
+# dsPIC's case, here avr-gcc) and on a 32-bit microcontroller; they are
+# compiled with the e-puck target's configuration (scripts/cross-check.sh).
+PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c firmware/*.c drivers/*/*.c bootloader/*.c)
 cross-check: | $(DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
 

@@ -1,17 +1,16 @@
 // The serial bootloader's core: reads frames from the link byte by byte,
-// answers the Aseba bootloader messages and programs application rows.
+// answers the Aseba bootloader messages and programs application pages.
 
 #include "bootloader/bootloader.h"
 
 #define BYTE_BITS          8u
 #define BYTE_MASK          0xFFu
-#define PC_UNITS_PER_WORD  2u
+#define WORD_BYTES         (HAL_FLASH_WORD_BITS / BYTE_BITS) // the bytes of a chunk stored
 #define RECEIVE_CHUNK      16u
 #define FRAME_MAX_PAYLOAD  6u // the largest payload the bootloader sends
 #define DEST_BYTES         2u
 #define PAGE_COMMAND_BYTES 4u // dest, page number
 #define DATA_COMMAND_BYTES (DEST_BYTES + BOOT_CHUNK_BYTES)
-#define PHANTOM_BYTE       3u // the fourth byte of a chunk, not stored
 
 static uint16_t get_u16(const uint8_t *bytes)
 {
@@ -29,6 +28,8 @@ static void put_u16(uint8_t *bytes, uint16_t value)
 static void send_frame(bootloader *loader, uint16_t type, const uint8_t *payload, uint16_t length)
 {
     uint8_t frame[BOOT_FRAME_HEADER_BYTES + FRAME_MAX_PAYLOAD];
+    const uint8_t *next = frame;
+    uint16_t left = (uint16_t)(BOOT_FRAME_HEADER_BYTES + length);
     uint16_t i;
 
     put_u16(frame, length);
@@ -36,7 +37,14 @@ static void send_frame(bootloader *loader, uint16_t type, const uint8_t *payload
     put_u16(frame + 4, type);
     for (i = 0; i < length; i++)
         frame[BOOT_FRAME_HEADER_BYTES + i] = payload[i];
-    hal_link_send(loader->board, frame, (uint16_t)(BOOT_FRAME_HEADER_BYTES + length));
+    // The bootloader has nothing else to do: it waits for room.
+    while (left > 0) {
+        uint16_t taken = hal_link_send(loader->board, next, left);
+        next += taken;
+        left = (uint16_t)(left - taken);
+        if (left > 0)
+            hal_idle(loader->board);
+    }
 }
 
 static void send_description(bootloader *loader)
@@ -57,13 +65,13 @@ static void send_ack(bootloader *loader, uint16_t code)
     send_frame(loader, BOOT_MESSAGE_ACK, payload, sizeof payload);
 }
 
-// A failure ack carries the low 16 bits of the row's PC address.
+// A failure ack carries the low 16 bits of the page's address.
 static void send_failure(bootloader *loader, uint16_t page)
 {
     uint8_t payload[4];
 
     put_u16(payload, BOOT_ACK_PROGRAMMING_FAILED);
-    put_u16(payload + 2, (uint16_t)((uint32_t)page * HAL_FLASH_ROW_SPAN));
+    put_u16(payload + 2, (uint16_t)((uint32_t)page * BOOT_PAGE_SPAN));
     send_frame(loader, BOOT_MESSAGE_ACK, payload, sizeof payload);
 }
 
@@ -71,7 +79,16 @@ static void send_failure(bootloader *loader, uint16_t page)
 
 static uint32_t page_address(uint16_t page)
 {
-    return (uint32_t)page * HAL_FLASH_ROW_SPAN;
+    return (uint32_t)page * BOOT_PAGE_SPAN;
+}
+
+// Erases the unit under the page at `address`, which must be exactly the page.
+static bool erase_page(hal_board *board, uint32_t address)
+{
+    uint32_t unit_start;
+
+    return hal_flash_unit(board, address, &unit_start) == BOOT_PAGE_SPAN && unit_start == address &&
+           hal_flash_erase(board, address);
 }
 
 static bool page_writable(uint16_t page)
@@ -80,21 +97,21 @@ static bool page_writable(uint16_t page)
     return (uint16_t)(page - BOOT_PAGES_START) < BOOT_PAGES_COUNT;
 }
 
-// Makes the application invalid before its rows change.
+// Makes the application invalid before its pages change.
 static bool erase_descriptor(hal_board *board)
 {
     if (hal_flash_read(board, BOOT_DESCRIPTOR_ADDRESS) == HAL_FLASH_ERASED)
         return true;
-    return hal_flash_erase_row(board, BOOT_DESCRIPTOR_ADDRESS);
+    return erase_page(board, BOOT_DESCRIPTOR_ADDRESS);
 }
 
-static bool row_holds(bootloader *loader, uint32_t address)
+static bool page_holds(bootloader *loader, uint32_t address)
 {
     uint16_t i;
 
-    for (i = 0; i < HAL_FLASH_ROW_INSTRUCTIONS; i++) {
-        if (hal_flash_read(loader->board, address + (uint32_t)i * PC_UNITS_PER_WORD) !=
-            loader->row[i])
+    for (i = 0; i < BOOT_PAGE_WORDS; i++) {
+        if (hal_flash_read(loader->board, address + (uint32_t)i * HAL_FLASH_WORD_SPAN) !=
+            loader->page_words[i])
             return false;
     }
     return true;
@@ -104,14 +121,14 @@ static bool program_page(bootloader *loader)
 {
     uint32_t address = page_address(loader->page);
 
-    // A row that already holds the page is left alone: re-flashing a
+    // A page that already holds its data is left alone: re-flashing a
     // similar image wears less and is quicker.
-    if (row_holds(loader, address))
+    if (page_holds(loader, address))
         return true;
-    if (!hal_flash_erase_row(loader->board, address) ||
-        !hal_flash_write_row(loader->board, address, loader->row))
+    if (!erase_page(loader->board, address) ||
+        !hal_flash_program(loader->board, address, loader->page_words, BOOT_PAGE_WORDS))
         return false;
-    return row_holds(loader, address);
+    return page_holds(loader, address);
 }
 
 // --- messages ----------------------------------------------------------------
@@ -133,14 +150,14 @@ static void write_page(bootloader *loader, uint16_t length)
     }
     loader->programming = true;
     loader->page = page;
-    loader->instructions_received = 0;
+    loader->words_received = 0;
     send_ack(loader, BOOT_ACK_SUCCESS);
 }
 
 static void page_data_write(bootloader *loader, uint16_t length)
 {
     const uint8_t *chunk = loader->payload + DEST_BYTES;
-    uint32_t instruction = 0;
+    uint32_t word = 0;
     uint16_t i;
 
     if (!loader->programming) {
@@ -152,10 +169,11 @@ static void page_data_write(bootloader *loader, uint16_t length)
         send_ack(loader, BOOT_ACK_INVALID_FRAME_SIZE);
         return;
     }
-    for (i = 0; i < PHANTOM_BYTE; i++)
-        instruction |= (uint32_t)chunk[i] << (BYTE_BITS * i);
-    loader->row[loader->instructions_received++] = instruction;
-    if (loader->instructions_received < HAL_FLASH_ROW_INSTRUCTIONS)
+    // The bytes beyond the word's (the dsPIC's phantom byte) are not stored.
+    for (i = 0; i < WORD_BYTES; i++)
+        word |= (uint32_t)chunk[i] << (BYTE_BITS * i);
+    loader->page_words[loader->words_received++] = word;
+    if (loader->words_received < BOOT_PAGE_WORDS)
         return;
     loader->programming = false;
     if (program_page(loader))
@@ -179,13 +197,13 @@ static void read_page(bootloader *loader, uint16_t length)
         send_failure(loader, page);
         return;
     }
-    for (i = 0; i < HAL_FLASH_ROW_INSTRUCTIONS; i++) {
-        uint32_t instruction =
-          hal_flash_read(loader->board, page_address(page) + (uint32_t)i * PC_UNITS_PER_WORD);
+    for (i = 0; i < BOOT_PAGE_WORDS; i++) {
+        uint32_t word =
+          hal_flash_read(loader->board, page_address(page) + (uint32_t)i * HAL_FLASH_WORD_SPAN);
         uint8_t chunk[BOOT_CHUNK_BYTES];
-        for (byte = 0; byte < PHANTOM_BYTE; byte++)
-            chunk[byte] = (uint8_t)((instruction >> (BYTE_BITS * byte)) & BYTE_MASK);
-        chunk[PHANTOM_BYTE] = 0;
+        for (byte = 0; byte < BOOT_CHUNK_BYTES; byte++)
+            chunk[byte] =
+              byte < WORD_BYTES ? (uint8_t)((word >> (BYTE_BITS * byte)) & BYTE_MASK) : 0;
         send_frame(loader, BOOT_MESSAGE_PAGE_DATA_READ, chunk, BOOT_CHUNK_BYTES);
     }
     send_ack(loader, BOOT_ACK_SUCCESS);
@@ -254,7 +272,7 @@ void boot_start(bootloader *loader, hal_board *board, uint16_t node_id)
     loader->last_byte_ms = loader->started_ms;
     loader->programming = false;
     loader->page = 0;
-    loader->instructions_received = 0;
+    loader->words_received = 0;
     send_description(loader);
 }
 

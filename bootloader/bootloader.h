@@ -1,19 +1,20 @@
 // The serial bootloader's core: the Aseba bootloader messages
-// (protocol.md §6.9) over the board's link, writing application rows.
+// (protocol.md §6.9) over the board's link, writing application pages.
 //
-// Pages are flash rows as the Aseba host counts them in a Microchip HEX
-// file: there every 24-bit instruction takes 4 bytes (low, middle, upper,
-// then a zero phantom byte) at byte address 2 x PC, so a row of 32
-// instructions (0x40 PC units) is one page of 128 bytes, page number =
-// PC / 0x40, and each 4-byte PAGE_DATA_WRITE chunk is one instruction.
+// Pages are BOOT_PAGE_WORDS flash words as the Aseba host counts them in a
+// HEX file: there every word takes 4 bytes (on the e-puck a 24-bit
+// instruction: low, middle, upper, then a zero phantom byte, at byte address
+// 2 x PC), so a page is 128 bytes, page number = address / BOOT_PAGE_SPAN,
+// and each 4-byte PAGE_DATA_WRITE chunk is one word. A page must be one
+// erase unit of the chip (a row on the e-puck): a page of another size is
+// refused.
 //
 // Only the pages of the application region (boot_application.h) can be
-// written or read; rows 0-3 (reset GOTO and vector tables), the bytecode
-// store and the bootloaders above it are refused, so the bootloader never
-// erases itself or the way to it. A row that already holds its page is not
-// rewritten. Every page write but the descriptor's first erases the
-// descriptor, so an interrupted flashing leaves no valid application and
-// the bootloader stays.
+// written or read; what lies below it (on the e-puck the reset GOTO and
+// vector tables), the bytecode store and the bootloaders above it are
+// refused, so the bootloader never erases itself or the way to it. A page
+// that already holds its data is not rewritten. Every page write but the descriptor's first erases
+// the descriptor, so an interrupted flashing leaves no valid application and the bootloader stays.
 //
 // Usage: boot_start once after reset, then boot_poll in a loop until it
 // says to start the application (the chip then jumps to the entry address
@@ -28,11 +29,11 @@
 #include "bootloader/boot_application.h"
 #include "hal/hal.h"
 
-#define BOOT_BYTES_PER_INSTRUCTION 4u // in HEX files and PAGE_DATA_WRITE chunks
-#define BOOT_PAGE_BYTES            (HAL_FLASH_ROW_INSTRUCTIONS * BOOT_BYTES_PER_INSTRUCTION)
-#define BOOT_PAGES_START           ((uint16_t)(BOOT_APPLICATION_START / HAL_FLASH_ROW_SPAN))
+#define BOOT_BYTES_PER_INSTRUCTION 4u // per word, in HEX files and PAGE_DATA_WRITE chunks
+#define BOOT_PAGE_BYTES            (BOOT_PAGE_WORDS * BOOT_BYTES_PER_INSTRUCTION)
+#define BOOT_PAGES_START           ((uint16_t)(BOOT_APPLICATION_START / BOOT_PAGE_SPAN))
 #define BOOT_PAGES_COUNT                                                                           \
-    ((uint16_t)((BOOT_APPLICATION_END - BOOT_APPLICATION_START) / HAL_FLASH_ROW_SPAN))
+    ((uint16_t)((BOOT_APPLICATION_END - BOOT_APPLICATION_START) / BOOT_PAGE_SPAN))
 
 // How long after reset the bootloader waits to be addressed before it starts
 // a valid application, and the silence that abandons a half-received frame.
@@ -52,7 +53,7 @@
 // BOOTLOADER_ACK error codes (protocol.md §5.15).
 #define BOOT_ACK_SUCCESS            0u
 #define BOOT_ACK_INVALID_FRAME_SIZE 1u
-#define BOOT_ACK_PROGRAMMING_FAILED 2u // followed by the low 16 bits of the row's PC address
+#define BOOT_ACK_PROGRAMMING_FAILED 2u // followed by the low 16 bits of the page's address
 #define BOOT_ACK_NOT_PROGRAMMING    3u
 
 #define BOOT_FRAME_HEADER_BYTES 6u // len, source, type
@@ -81,8 +82,8 @@ typedef struct bootloader {
     // The page being programmed.
     bool programming;
     uint16_t page;
-    uint16_t instructions_received;
-    uint32_t row[HAL_FLASH_ROW_INSTRUCTIONS];
+    uint16_t words_received;
+    uint32_t page_words[BOOT_PAGE_WORDS];
 } bootloader;
 
 // Prepares the bootloader for node `node_id` and sends BOOTLOADER_DESCRIPTION.

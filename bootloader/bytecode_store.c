@@ -3,32 +3,33 @@
 
 #include "bootloader/bytecode_store.h"
 
-#include "firmware/epuck_config.h"
 #include "vm/node.h"
 
 #define BYTE_BITS            8u
 #define BYTE_MASK            0xFFu
-#define PC_UNITS_PER_WORD    2u // program-counter units per instruction
 #define HEADER_MAGIC         0u // byte offsets in the header
 #define HEADER_SEQUENCE      2u
 #define HEADER_COUNT         4u
 #define HEADER_CRC           6u
 #define HEADER_CHECKED_BYTES 6u // magic, sequence, count: covered by the CRC
 #define NO_SLOT              0xFFFFu
-#define FIRST_SEQUENCE       1u
 
-static uint32_t row_address(const store_place *place, uint16_t slot, uint16_t row)
+typedef char
+  settings_fit_their_slot[STORE_SETTINGS_CAPACITY_WORDS >= EPUCK_SETTINGS_WORDS ? 1 : -1];
+#define FIRST_SEQUENCE 1u
+
+static uint32_t block_address(const store_place *place, uint16_t slot, uint16_t block)
 {
-    return place->slot_address[slot] + (uint32_t)row * HAL_FLASH_ROW_SPAN;
+    return place->slot_address[slot] + (uint32_t)block * STORE_BLOCK_SPAN;
 }
 
-// Byte `position` of a slot's stream: 3 per instruction, low byte first.
+// Byte `position` of a slot's stream: STORE_BYTES_PER_WORD per flash word,
+// low byte first.
 static uint8_t read_byte(hal_board *board, uint32_t slot_address, uint16_t position)
 {
-    uint16_t instruction = (uint16_t)(position / STORE_BYTES_PER_INSTRUCTION);
-    uint16_t byte = (uint16_t)(position % STORE_BYTES_PER_INSTRUCTION);
-    uint32_t value =
-      hal_flash_read(board, slot_address + (uint32_t)instruction * PC_UNITS_PER_WORD);
+    uint16_t word = (uint16_t)(position / STORE_BYTES_PER_WORD);
+    uint16_t byte = (uint16_t)(position % STORE_BYTES_PER_WORD);
+    uint32_t value = hal_flash_read(board, slot_address + (uint32_t)word * HAL_FLASH_WORD_SPAN);
 
     return (uint8_t)((value >> (BYTE_BITS * byte)) & BYTE_MASK);
 }
@@ -43,8 +44,7 @@ static uint16_t read_word(hal_board *board, uint32_t slot_address, uint16_t posi
 
 uint16_t store_capacity(const store_place *place)
 {
-    return (uint16_t)(((uint32_t)place->slot_rows * STORE_ROW_BYTES - STORE_HEADER_BYTES) /
-                      STORE_WORD_BYTES);
+    return (uint16_t)STORE_CAPACITY_WORDS(place->slot_blocks);
 }
 
 bool store_slot_valid(hal_board *board,
@@ -119,33 +119,53 @@ static void put_word(uint8_t *bytes, uint16_t value)
     bytes[1] = (uint8_t)(value >> BYTE_BITS);
 }
 
-// Programs row `row` of the stream (padding with erased bytes) and reads it
-// back; returns false when the flash refuses or keeps other values.
-static bool write_row(hal_board *board,
-                      uint32_t address,
-                      uint16_t row,
-                      const uint8_t *header,
-                      const uint16_t *words,
-                      uint16_t end)
+// Programs block `block` of the stream (padding with erased bytes) and
+// reads it back; returns false when the flash refuses or keeps other values.
+static bool write_block(hal_board *board,
+                        uint32_t address,
+                        uint16_t block,
+                        const uint8_t *header,
+                        const uint16_t *words,
+                        uint16_t end)
 {
-    uint32_t instructions[HAL_FLASH_ROW_INSTRUCTIONS];
-    uint16_t position = (uint16_t)(row * STORE_ROW_BYTES);
+    uint32_t values[STORE_BLOCK_WORDS];
+    uint16_t position = (uint16_t)(block * STORE_BLOCK_BYTES);
     uint16_t i;
     uint16_t byte;
 
-    for (i = 0; i < HAL_FLASH_ROW_INSTRUCTIONS; i++) {
+    for (i = 0; i < STORE_BLOCK_WORDS; i++) {
         uint32_t value = 0;
-        for (byte = 0; byte < STORE_BYTES_PER_INSTRUCTION; byte++, position++) {
+        for (byte = 0; byte < STORE_BYTES_PER_WORD; byte++, position++) {
             uint32_t part = position < end ? record_byte(header, words, position) : BYTE_MASK;
             value |= part << (BYTE_BITS * byte);
         }
-        instructions[i] = value;
+        values[i] = value;
     }
-    if (!hal_flash_write_row(board, address, instructions))
+    if (!hal_flash_program(board, address, values, STORE_BLOCK_WORDS))
         return false;
-    for (i = 0; i < HAL_FLASH_ROW_INSTRUCTIONS; i++) {
-        if (hal_flash_read(board, address + (uint32_t)i * PC_UNITS_PER_WORD) != instructions[i])
+    for (i = 0; i < STORE_BLOCK_WORDS; i++) {
+        if (hal_flash_read(board, address + (uint32_t)i * HAL_FLASH_WORD_SPAN) != values[i])
             return false;
+    }
+    return true;
+}
+
+// Erases the units under the first `blocks` blocks of slot `slot`, in order;
+// false when the slot does not own them (a unit begins before the slot or
+// reaches past it) or an erase fails.
+static bool erase_blocks(hal_board *board, const store_place *place, uint16_t slot, uint16_t blocks)
+{
+    uint32_t address = place->slot_address[slot];
+    uint32_t end = block_address(place, slot, blocks);
+    uint32_t slot_end = block_address(place, slot, place->slot_blocks);
+
+    while (address < end) {
+        uint32_t unit_start;
+        uint32_t span = hal_flash_unit(board, address, &unit_start);
+        if (span == 0 || unit_start != address || span > slot_end - address ||
+            !hal_flash_erase(board, address))
+            return false;
+        address += span;
     }
     return true;
 }
@@ -158,15 +178,15 @@ bool store_save(hal_board *board, const store_place *place, const uint16_t *word
     uint16_t sequence = current == NO_SLOT ? FIRST_SEQUENCE : (uint16_t)(newest.sequence + 1u);
     uint8_t header[STORE_HEADER_BYTES];
     uint16_t end;
-    uint16_t rows;
-    uint16_t row;
+    uint16_t blocks;
+    uint16_t block;
     uint16_t position;
     uint16_t crc;
 
     if (count > store_capacity(place))
         return false;
     end = (uint16_t)(STORE_HEADER_BYTES + count * STORE_WORD_BYTES);
-    rows = (uint16_t)STORE_ROWS_FOR_WORDS(count);
+    blocks = (uint16_t)STORE_BLOCKS_FOR_WORDS(count);
 
     put_word(header + HEADER_MAGIC, place->magic);
     put_word(header + HEADER_SEQUENCE, sequence);
@@ -178,14 +198,12 @@ bool store_save(hal_board *board, const store_place *place, const uint16_t *word
     }
     put_word(header + HEADER_CRC, crc);
 
-    // The header row goes first when erasing and last when writing, so that
-    // the slot reads as invalid for the whole save.
-    for (row = 0; row < rows; row++) {
-        if (!hal_flash_erase_row(board, row_address(place, target, row)))
-            return false;
-    }
-    for (row = rows; row-- > 0;) {
-        if (!write_row(board, row_address(place, target, row), row, header, words, end))
+    // The header's block goes first when erasing and last when writing, so
+    // that the slot reads as invalid for the whole save.
+    if (!erase_blocks(board, place, target, blocks))
+        return false;
+    for (block = blocks; block-- > 0;) {
+        if (!write_block(board, block_address(place, target, block), block, header, words, end))
             return false;
     }
     return store_slot_valid(board, place, target, &newest);
@@ -212,17 +230,17 @@ bool store_load(hal_board *board,
 
 void epuck_store_bytecode_place(store_place *place)
 {
-    place->slot_address[0] = EPUCK_STORE_BYTECODE_SLOT_0;
-    place->slot_address[1] = EPUCK_STORE_BYTECODE_SLOT_1;
-    place->slot_rows = EPUCK_STORE_BYTECODE_SLOT_ROWS;
+    place->slot_address[0] = STORE_BYTECODE_SLOT_0;
+    place->slot_address[1] = STORE_BYTECODE_SLOT_1;
+    place->slot_blocks = STORE_BYTECODE_SLOT_BLOCKS;
     place->magic = STORE_MAGIC_BYTECODE;
 }
 
 void epuck_store_settings_place(store_place *place)
 {
-    place->slot_address[0] = EPUCK_STORE_SETTINGS_SLOT_0;
-    place->slot_address[1] = EPUCK_STORE_SETTINGS_SLOT_1;
-    place->slot_rows = EPUCK_STORE_SETTINGS_SLOT_ROWS;
+    place->slot_address[0] = STORE_SETTINGS_SLOT_0;
+    place->slot_address[1] = STORE_SETTINGS_SLOT_1;
+    place->slot_blocks = STORE_SETTINGS_SLOT_BLOCKS;
     place->magic = STORE_MAGIC_SETTINGS;
 }
 
@@ -266,10 +284,10 @@ bool epuck_store_load_settings(hal_board *board,
 
 uint16_t epuck_store_node_id(hal_board *board, uint16_t selector_position)
 {
-    uint16_t settings[EPUCK_STORE_SETTINGS_MAX_WORDS];
+    uint16_t settings[EPUCK_SETTINGS_WORDS];
     uint16_t count;
 
-    if (epuck_store_load_settings(board, settings, EPUCK_STORE_SETTINGS_MAX_WORDS, &count) &&
+    if (epuck_store_load_settings(board, settings, EPUCK_SETTINGS_WORDS, &count) &&
         count > EPUCK_SETTINGS_NODE_ID && settings[EPUCK_SETTINGS_NODE_ID] >= 1u &&
         settings[EPUCK_SETTINGS_NODE_ID] <= EPUCK_SETTINGS_NODE_ID_MAX)
         return settings[EPUCK_SETTINGS_NODE_ID];

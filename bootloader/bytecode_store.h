@@ -1,12 +1,14 @@
 // Fail-safe storage of records (the user's bytecode, the node's settings) in
-// the program-flash rows of the linker's `bytecode_store` region.
+// the flash region the target's configuration reserves for them
+// (STORE_BYTECODE_SLOT_0 ... in hal/<port>/*_config.h), through hal.h.
 //
 // Every kind of record has two slots. A save always writes the slot that does
 // not hold the newest valid record, so the newest valid record is never
 // touched: a power cut at any moment of a save leaves either the old or the
-// new record loadable. A slot holds a byte stream, 3 bytes per 24-bit
-// instruction (low, middle, upper byte), that starts with a header of four
-// little-endian 16-bit words:
+// new record loadable. A slot holds a byte stream, HAL_FLASH_WORD_BITS / 8
+// bytes per flash word (low byte first: 3 per dsPIC instruction, 4 per
+// Cortex-M word), that starts with a header of four little-endian 16-bit
+// words:
 //
 //   magic     the kind of record (STORE_MAGIC_BYTECODE, STORE_MAGIC_SETTINGS)
 //   sequence  one more than the slot it replaced (modulo 2^16)
@@ -14,9 +16,12 @@
 //   crc       CRC-16/XMODEM (node_crc16, seed 0) of magic, sequence, count
 //             (2 bytes each, low byte first) then of the payload bytes
 //
-// then the payload words, low byte first. The row holding the header is
-// erased first and written last, so a slot whose header is readable is
-// complete unless a cut tore its first row, which the CRC then rejects.
+// then the payload words, low byte first. A slot is written in blocks of
+// STORE_BLOCK_WORDS flash words; the erase units under the record are erased
+// first and the block holding the header is written last, so a slot whose
+// header is readable is complete unless a cut tore its first block, which the
+// CRC then rejects. A slot must begin where an erase unit begins, and own
+// every unit it reaches.
 
 #ifndef BYTECODE_STORE_H
 #define BYTECODE_STORE_H
@@ -24,52 +29,46 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "bootloader/flash_layout.h"
 #include "hal/hal.h"
 
-// The region (STORE_REGION_BASE, STORE_REGION_ROWS) is in flash_layout.h.
+#define STORE_SLOT_COUNT     2u
+#define STORE_BLOCK_WORDS    32u // flash words written at once
+#define STORE_BYTES_PER_WORD (HAL_FLASH_WORD_BITS / 8u)
+#define STORE_BLOCK_BYTES    (STORE_BLOCK_WORDS * STORE_BYTES_PER_WORD)
+#define STORE_BLOCK_SPAN     (STORE_BLOCK_WORDS * HAL_FLASH_WORD_SPAN) // address units
+#define STORE_HEADER_BYTES   8u // magic, sequence, count, crc
+#define STORE_WORD_BYTES     2u
+typedef char
+  store_block_is_whole_program_runs[STORE_BLOCK_WORDS % HAL_FLASH_PROGRAM_WORDS == 0 ? 1 : -1];
 
-#define STORE_SLOT_COUNT            2u
-#define STORE_BYTES_PER_INSTRUCTION 3u // the 24 bits of an instruction
-#define STORE_ROW_BYTES             (HAL_FLASH_ROW_INSTRUCTIONS * STORE_BYTES_PER_INSTRUCTION)
-#define STORE_HEADER_BYTES          8u // magic, sequence, count, crc
-#define STORE_WORD_BYTES            2u
+// How many blocks a slot needs for `words` payload words, and the most
+// payload words `blocks` blocks hold.
+#define STORE_BLOCKS_FOR_WORDS(words)                                                              \
+    (((words)*STORE_WORD_BYTES + STORE_HEADER_BYTES + STORE_BLOCK_BYTES - 1u) / STORE_BLOCK_BYTES)
+#define STORE_CAPACITY_WORDS(blocks)                                                               \
+    (((uint32_t)(blocks)*STORE_BLOCK_BYTES - STORE_HEADER_BYTES) / STORE_WORD_BYTES)
 
-// How many rows a slot needs for `words` payload words.
-#define STORE_ROWS_FOR_WORDS(words)                                                                \
-    (((words)*STORE_WORD_BYTES + STORE_HEADER_BYTES + STORE_ROW_BYTES - 1u) / STORE_ROW_BYTES)
+// What the target's slots hold: the firmware checks that the bytecode fits.
+#define STORE_BYTECODE_CAPACITY_WORDS STORE_CAPACITY_WORDS(STORE_BYTECODE_SLOT_BLOCKS)
+#define STORE_SETTINGS_CAPACITY_WORDS STORE_CAPACITY_WORDS(STORE_SETTINGS_SLOT_BLOCKS)
 
 #define STORE_MAGIC_BYTECODE 0xB17Eu
 #define STORE_MAGIC_SETTINGS 0x5E77u
 
-// The e-puck layout: two bytecode slots, then two settings slots, from the
-// start of the region; the remaining rows are unused.
-#define EPUCK_STORE_BYTECODE_MAX_WORDS 1024u // the VM's bytecode array
-#define EPUCK_STORE_BYTECODE_SLOT_ROWS STORE_ROWS_FOR_WORDS(EPUCK_STORE_BYTECODE_MAX_WORDS) // 22
-#define EPUCK_STORE_SETTINGS_MAX_WORDS                                                             \
-    ((STORE_ROW_BYTES - STORE_HEADER_BYTES) / STORE_WORD_BYTES) // 44: one row
-#define EPUCK_STORE_SETTINGS_SLOT_ROWS 1u
-#define EPUCK_STORE_BYTECODE_SLOT_0    STORE_REGION_BASE
-#define EPUCK_STORE_BYTECODE_SLOT_1                                                                \
-    (EPUCK_STORE_BYTECODE_SLOT_0 + EPUCK_STORE_BYTECODE_SLOT_ROWS * HAL_FLASH_ROW_SPAN)
-#define EPUCK_STORE_SETTINGS_SLOT_0                                                                \
-    (EPUCK_STORE_BYTECODE_SLOT_1 + EPUCK_STORE_BYTECODE_SLOT_ROWS * HAL_FLASH_ROW_SPAN)
-#define EPUCK_STORE_SETTINGS_SLOT_1                                                                \
-    (EPUCK_STORE_SETTINGS_SLOT_0 + EPUCK_STORE_SETTINGS_SLOT_ROWS * HAL_FLASH_ROW_SPAN)
-#define EPUCK_STORE_ROWS_USED                                                                      \
-    (STORE_SLOT_COUNT * (EPUCK_STORE_BYTECODE_SLOT_ROWS + EPUCK_STORE_SETTINGS_SLOT_ROWS))
-typedef char epuck_store_fits_its_region[EPUCK_STORE_ROWS_USED <= STORE_REGION_ROWS ? 1 : -1];
-
-// The settings record: word EPUCK_SETTINGS_NODE_ID is the node id the robot
-// answers to (a valid id is 1..EPUCK_SETTINGS_NODE_ID_MAX); the words after
-// it are for calibration.
+// The settings record, at most EPUCK_SETTINGS_WORDS words (one dsPIC row):
+// word EPUCK_SETTINGS_NODE_ID is the node id the robot answers to (a valid id
+// is 1..EPUCK_SETTINGS_NODE_ID_MAX); the words after it are for calibration.
+#define EPUCK_SETTINGS_WORDS       44u
 #define EPUCK_SETTINGS_NODE_ID     0u
 #define EPUCK_SETTINGS_NODE_ID_MAX 0xFFFEu // 0xFFFF is the broadcast address
+// Without one, the node id is (selector & EPUCK_SELECTOR_NODE_MASK) + 1
+// (hardware §6.1, §6.6).
+#define EPUCK_SELECTOR_NODE_MASK 0x7u
 
 // Where one kind of record lives.
 typedef struct store_place {
-    uint32_t slot_address[STORE_SLOT_COUNT]; // first row of each slot (PC address)
-    uint16_t slot_rows;                      // rows per slot
+    uint32_t slot_address[STORE_SLOT_COUNT]; // where each slot begins
+    uint16_t slot_blocks;                    // blocks per slot
     uint16_t magic;                          // the kind of record kept there
 } store_place;
 
@@ -105,11 +104,11 @@ bool store_load(hal_board *board,
                 uint16_t capacity,
                 uint16_t *count);
 
-// The e-puck's two places in the bytecode_store region.
+// The target's two places (its configuration's STORE_* slots).
 void epuck_store_bytecode_place(store_place *place);
 void epuck_store_settings_place(store_place *place);
 
-// Saves the user's bytecode (up to EPUCK_STORE_BYTECODE_MAX_WORDS words);
+// Saves the user's bytecode (up to STORE_BYTECODE_CAPACITY_WORDS words);
 // returns whether it is stored (store_save).
 bool epuck_store_save_bytecode(hal_board *board, const uint16_t *bytecode, uint16_t count);
 
@@ -121,7 +120,8 @@ bool epuck_store_load_bytecode(hal_board *board,
                                uint16_t *count);
 
 // Saves the settings words (node id, calibration; up to
-// EPUCK_STORE_SETTINGS_MAX_WORDS); returns whether they are stored.
+// STORE_SETTINGS_CAPACITY_WORDS, of which the node reads
+// EPUCK_SETTINGS_WORDS); returns whether they are stored.
 bool epuck_store_save_settings(hal_board *board, const uint16_t *settings, uint16_t count);
 
 // Loads the newest stored settings; returns false when there are none.

@@ -18,6 +18,10 @@
 #define EPUCK_STACK_WORDS    32
 #define EPUCK_FREE_WORDS     256 // for user variables and temporaries
 
+// camLine at boot: where in the image the camera's line is, in percent of
+// its height (the GCtronic firmware's cam.line, §6.1).
+#define EPUCK_CAM_LINE_AT_BOOT 50
+
 // EPUCK_VARIABLE(identifier, "name", size in words), in memory order.
 #define EPUCK_VARIABLE_LIST(X)                                                                     \
     X(id, "id", 1)                                                                                 \

@@ -1,27 +1,25 @@
 // The e-puck's main loop: bytes from the link into the node, the actuator
-// variables to the drivers and the sensors' values to the variables (in the
-// upstream firmware's order, hardware §6.1), the local events, and the
-// node's poll (VM and protocol). Written against hal.h only,
-// so the same code runs on the robot and in the host emulation.
+// variables to the robot's board and its sensors' values to the variables
+// (epuck_robot.h), the local events, and the node's poll (VM and protocol).
+// Written against hal.h and the board layer only, so the same code runs on
+// every chip and in the host emulation.
 
 #include "epuck_firmware.h"
 
-#include "drivers/epuck/epuck_battery.h"
-#include "drivers/epuck/epuck_selector.h"
 #include "bootloader/bytecode_store.h"
 #include "epuck_natives.h"
+
+// The link must keep a whole frame in each direction, and the store must
+// hold the whole bytecode memory.
+typedef char link_receives_a_whole_frame[HAL_LINK_RECEIVE_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
+typedef char link_queues_a_whole_frame[HAL_LINK_TRANSMIT_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
+typedef char
+  store_holds_the_bytecode[STORE_BYTECODE_CAPACITY_WORDS >= EPUCK_BYTECODE_WORDS ? 1 : -1];
 
 static const node_named_variable epuck_variables[] = {
 #define EPUCK_VARIABLE_DESCRIPTION(identifier, name, size) { name, size },
     EPUCK_VARIABLE_LIST(EPUCK_VARIABLE_DESCRIPTION)
 #undef EPUCK_VARIABLE_DESCRIPTION
-};
-
-enum epuck_local_event {
-#define EPUCK_LOCAL_EVENT_INDEX(identifier, name, description) EPUCK_EVENT_##identifier,
-    EPUCK_LOCAL_EVENT_LIST(EPUCK_LOCAL_EVENT_INDEX)
-#undef EPUCK_LOCAL_EVENT_INDEX
-      EPUCK_LOCAL_EVENT_COUNT
 };
 
 static const node_local_event epuck_local_events[] = {
@@ -37,13 +35,23 @@ const node_description epuck_description = {
     &epuck_native_table,
 };
 
-// The node streams its frames to the board's link.
+// The node streams its frames to the link's transmit buffer. The main loop
+// polls the node only when a whole frame fits, so this waits only when one
+// poll writes more than the buffer holds (the description, an event flood),
+// for the link's interrupt to drain it.
 static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bool frame_complete)
 {
     epuck_firmware *firmware = context;
 
     (void)frame_complete;
-    hal_link_send(firmware->board, bytes, count);
+    for (;;) {
+        uint16_t taken = hal_link_send(firmware->board, bytes, count);
+        bytes += taken;
+        count = (uint16_t)(count - taken);
+        if (count == 0)
+            return;
+        hal_idle(firmware->board);
+    }
 }
 
 // WRITE_BYTECODE: the program runs at the next boot. A failed save is
@@ -78,36 +86,18 @@ static void start_stored_program(epuck_firmware *firmware)
     vm_command_run(&firmware->node.vm);
 }
 
-// Starts every driver: actuators off, the analog scan (whose first second
-// and a half calibrates the proximity sensors and accelerometer), the
-// camera and the remote (hardware §6.6).
-static void start_drivers(epuck_firmware *firmware, hal_board *board)
-{
-    epuck_motor_init(&firmware->left_motor, board, EPUCK_MOTOR_LEFT);
-    epuck_motor_init(&firmware->right_motor, board, EPUCK_MOTOR_RIGHT);
-    epuck_leds_init(&firmware->leds, board);
-    epuck_proximity_init(&firmware->proximity, board);
-    epuck_accelerometer_init(&firmware->accelerometer, board);
-    epuck_microphones_init(&firmware->microphones, board);
-    epuck_analog_start(&firmware->analog,
-                       board,
-                       &firmware->proximity,
-                       &firmware->accelerometer,
-                       &firmware->microphones);
-    epuck_camera_init(&firmware->camera, board);
-    epuck_rc5_init(&firmware->rc5, board);
-}
-
-void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t node_id)
+void epuck_firmware_init(epuck_firmware *firmware,
+                         hal_board *board,
+                         epuck_robot *robot,
+                         uint16_t node_id)
 {
     vm_memory memory;
     node_transport transport;
     node_hooks hooks;
 
     firmware->board = board;
-    if (node_id == 0)
-        node_id = epuck_store_node_id(board, epuck_selector_read(board));
-    start_drivers(firmware, board);
+    firmware->robot = robot;
+    epuck_robot_start(robot, board);
     memory.bytecode = firmware->bytecode;
     memory.bytecode_size = EPUCK_BYTECODE_WORDS;
     memory.variables = firmware->variables.words;
@@ -122,7 +112,7 @@ void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t no
     hooks.suspend_to_ram = 0;
     hooks.context = firmware;
     node_init(&firmware->node, node_id, &epuck_description, &memory, &transport, &hooks);
-    firmware->variables.named.cam_line[0] = EPUCK_CAMERA_DEFAULT_LINE;
+    firmware->variables.named.cam_line[0] = EPUCK_CAM_LINE_AT_BOOT;
     firmware->link_start = 0;
     firmware->link_count = 0;
     firmware->timer_period_ms = 0;
@@ -130,42 +120,15 @@ void epuck_firmware_init(epuck_firmware *firmware, hal_board *board, uint16_t no
     start_stored_program(firmware);
 }
 
-// Speeds and LEDs from the variables to the motors and LEDs; the speeds are
-// written back clamped to the motors' range.
-static void update_actuators(epuck_firmware *firmware)
+// The local events the robot's board asks for (bit i: event i).
+static void raise_local_events(epuck_firmware *firmware, uint16_t events)
 {
-    epuck_named_variables *named = &firmware->variables.named;
-    uint16_t led;
+    uint16_t index;
 
-    epuck_motor_set_speed(&firmware->left_motor, named->left_speed[0]);
-    epuck_motor_set_speed(&firmware->right_motor, named->right_speed[0]);
-    named->left_speed[0] = epuck_motor_speed(&firmware->left_motor);
-    named->right_speed[0] = epuck_motor_speed(&firmware->right_motor);
-    for (led = 0; led < EPUCK_RING_LED_COUNT; led++)
-        epuck_leds_set(&firmware->leds, led, named->leds[led] != 0);
-}
-
-// Sensor values into the variables, raising the events of new ones.
-static void update_sensors(epuck_firmware *firmware)
-{
-    epuck_named_variables *named = &firmware->variables.named;
-    uint8_t toggle;
-    uint8_t address;
-    uint8_t command;
-
-    if (epuck_proximity_take(&firmware->proximity, named->prox, named->ambient))
-        node_raise_local_event(&firmware->node, EPUCK_EVENT_ir_sensors);
-    epuck_accelerometer_read(&firmware->accelerometer, named->acc);
-    epuck_microphones_read(&firmware->microphones, named->mic);
-    if (epuck_camera_capture(
-          &firmware->camera, named->cam_line[0], named->cam_red, named->cam_green, named->cam_blue))
-        node_raise_local_event(&firmware->node, EPUCK_EVENT_camera);
-    named->steps_left[0] = epuck_motor_steps(&firmware->left_motor);
-    named->steps_right[0] = epuck_motor_steps(&firmware->right_motor);
-    named->battery[0] = epuck_battery_ok(firmware->board) ? 1 : 0;
-    named->selector[0] = (int16_t)epuck_selector_read(firmware->board);
-    if (epuck_rc5_take(&firmware->rc5, &toggle, &address, &command))
-        named->rc5[0] = command;
+    for (index = 0; index < EPUCK_LOCAL_EVENT_COUNT; index++) {
+        if (events & (1u << index))
+            node_raise_local_event(&firmware->node, index);
+    }
 }
 
 // The `timer` event every timer.period milliseconds (0 or less: never).
@@ -202,10 +165,14 @@ bool epuck_firmware_poll(epuck_firmware *firmware)
         firmware->link_count -= taken;
     }
 
-    update_actuators(firmware);
-    update_sensors(firmware);
+    epuck_robot_actuate(firmware->robot, &firmware->variables.named);
+    raise_local_events(firmware, epuck_robot_sense(firmware->robot, &firmware->variables.named));
     update_timer(firmware, now);
 
+    // The VM and the protocol only when a whole frame can be queued, so
+    // that an answer never waits for the link.
+    if (hal_link_send_room(firmware->board) < NODE_MAX_FRAME)
+        return firmware->link_count != 0;
     busy = node_poll(&firmware->node, now);
     return busy || firmware->link_count != 0;
 }

@@ -125,6 +125,20 @@ arena_6=$(arena_factor 6 60)
 arena_100=$(arena_factor 100 10)
 arena_1000=$(arena_factor 1000 2)
 
+# --- the STM32F4 image (hal/stm32f4, on QEMU's netduinoplus2) ----------------
+echo "bench: STM32F4 image" >&2
+make --no-print-directory BUILD="$build" stm32f4 "$bin/bench-qemu" >&2
+stm32f4_image=$build/stm32f4/epuck-aseba-stm32f4.elf
+# Code (vectors and .text), constant data, RAM (.data, .bss and the RAM kept
+# across resets); .data is also in flash, but there is none.
+read -r stm32f4_code stm32f4_constant stm32f4_ram < <(arm-none-eabi-size -A "$stm32f4_image" | awk '
+    $1 == ".isr_vector" || $1 == ".text" { code += $2 }
+    $1 == ".rodata" { constant += $2 }
+    $1 == ".data" || $1 == ".bss" || $1 == ".noinit" { ram += $2 }
+    END { print code, constant, ram }')
+stm32f4_runs=20
+stm32f4_per_step=$("$bin/bench-qemu" $stm32f4_runs 2>/dev/null | sed -n 's/^instructions per step //p')
+
 # --- the table -------------------------------------------------------------
 table=$(
     echo "| figure | ours | reference | ours / reference | goal |"
@@ -149,6 +163,8 @@ table=$(
     echo "| arena: real-time factor, default arena, 6 robots running the paper annex (60 simulated s) | ${arena_6}× | - | - | |"
     echo "| arena: real-time factor, default arena, 100 robots running the paper annex (10 simulated s) | ${arena_100}× | - | - | ≥ ${arena_goal_factor}× |"
     echo "| arena: real-time factor, default arena, 1000 robots running the paper annex (2 simulated s) | ${arena_1000}× | - | - | |"
+    echo "| STM32F4 image (make stm32f4, QEMU board, -O2): code / constant data / RAM, bytes | $stm32f4_code / $stm32f4_constant / $stm32f4_ram | - | - | |"
+    echo "| VM on the Cortex-M4 (QEMU -icount): instructions per bytecode step, computed goto | $stm32f4_per_step | - | - | |"
 )
 
 cpu_model=$(awk -F': ' '/^model name/ { print $2; exit }' /proc/cpuinfo)
@@ -205,6 +221,14 @@ cores=$(nproc)
     echo "  simulated time over the wall-clock time of the run, setup excluded, as"
     echo "  epuck-emu prints it when it stops. The square grows with N (about 20 cm ×"
     echo "  20 cm per robot, docs/arena-format.md)."
+    echo "- STM32F4: \`make stm32f4\`, sizes by \`arm-none-eabi-size -A\` (code: the"
+    echo "  vectors and .text; RAM: .data, .bss and the RAM the board keeps across resets"
+    echo "  for its store, 16 KiB). Instructions: \`bench-qemu $stm32f4_runs\` runs the VM"
+    echo "  workload above on the harness image (tests/qemu/target) in QEMU with"
+    echo "  \`-icount shift=0\` (the guest's clock counts instructions); the image counts"
+    echo "  the handler's steps one vm_step at a time, then times $stm32f4_runs runs to"
+    echo "  the end with SysTick, and a loop of known instructions converts its clock to"
+    echo "  instructions."
 } >"$report"
 echo "$table"
 echo "bench: written to $report" >&2

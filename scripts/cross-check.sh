@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Builds the portable layers (VM, node protocol, natives) with avr-gcc, whose
-# `int` is 16 bits like the dsPIC's, and with arm-none-eabi-gcc for a
-# Cortex-M4, warnings as errors, and prints their code and constant-data
-# sizes per layer.
+# Builds the portable layers (VM, node protocol, natives, firmware, drivers,
+# store and bootloader core) with avr-gcc, whose `int` is 16 bits like the
+# dsPIC's, and with arm-none-eabi-gcc for a Cortex-M4, warnings as errors,
+# against the e-puck target's configuration (hal/dspic30/dspic30_config.h),
+# and prints their code and constant-data sizes per layer.
 # Usage: cross-check.sh BUILD_DIR SOURCE...
 set -euo pipefail
 build=$1
@@ -10,7 +11,8 @@ shift
 sources=("$@")
 
 flags=(-std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef
-       -ffunction-sections -fdata-sections -Ivm -Inative_functions -I.)
+       -ffunction-sections -fdata-sections -Ivm -Inative_functions -I.
+       '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"')
 
 # The layer a source belongs to, for the size table.
 layer_of() {
@@ -19,6 +21,7 @@ layer_of() {
     vm/*) echo "vm" ;;
     native_functions/nat_dsp*) echo "dsp natives" ;;
     drivers/*) echo "drivers" ;;
+    firmware/*) echo "firmware" ;;
     bootloader/*) echo "storage, bootloader" ;;
     native_functions/*) echo "natives" ;;
     *) echo "other" ;;
@@ -61,7 +64,11 @@ image() { # name compiler size-tool flags...
     local name=$1 compiler=$2 size_tool=$3
     shift 3
     local elf=$build/cross-$name/node-image.elf
-    "$compiler" "${flags[@]}" "$@" -Wl,--gc-sections "${sources[@]}" tests/cross/node_image.c \
+    local layers=()
+    for source in "${sources[@]}"; do
+        case $source in vm/* | native_functions/*) layers+=("$source") ;; esac
+    done
+    "$compiler" "${flags[@]}" "$@" -Wl,--gc-sections "${layers[@]}" tests/cross/node_image.c \
         -o "$elf"
     "$size_tool" -A "$elf" | awk -v name="$name" '
         $1 ~ /^\.(text|init|fini)/ { code += $2 }
@@ -72,36 +79,43 @@ image() { # name compiler size-tool flags...
                      name == "avr" ? " (avr copies it to RAM)" : "" }'
 }
 
-# A proxy of the Aseba bootloader image's size (linker/epuck-bootloader.gld
-# gives it 2048 instructions): its program, the bootloader core, the store
-# (for the settings), the HAL's clock, pins, UART and flash against
-# simulated registers (tests/cross/bootloader_image.c), linked with unused
-# functions dropped. bootloader/README.md turns these bytes into dsPIC
-# instructions.
-bootloader_image() { # name compiler size-tool flags...
-    local name=$1 compiler=$2 size_tool=$3
-    shift 3
-    local elf=$build/cross-$name/bootloader-image.elf
+# Proxies of the two dsPIC images' sizes: each image's sources as `make
+# dspic30` links them (hal/dspic30/module.mk), against simulated registers
+# (tests/cross/simulated_registers.c, with the portable DSP kernel for the
+# DSP engine's), unused functions dropped. linker/epuck-bootloader.gld gives
+# the bootloader 2048 instructions (bootloader/README.md turns its bytes
+# into instructions); the application's RAM must fit the chip's 8 KB.
+dspic30_image() { # image(application|bootloader) name compiler size-tool flags...
+    local image=$1 name=$2 compiler=$3 size_tool=$4
+    shift 4
+    local elf=$build/cross-$name/$image-image.elf
+    local upper=${image^^}
+    local image_sources
+    # shellcheck disable=SC2207 # the list is words
+    image_sources=($(env -u MAKEFLAGS -u MFLAGS make -s --no-print-directory "sources-DSPIC30_$upper" |
+                         sed 's|hal/dspic30/dspic30_dsp_kernel.c|native_functions/nat_dsp_kernel.c|'))
     "$compiler" "${flags[@]}" "$@" -DDSPIC30_SIMULATED_REGISTERS -Wl,--gc-sections \
-        bootloader/bootloader_main_dspic30.c bootloader/bootloader.c \
-        bootloader/boot_application.c bootloader/bytecode_store.c \
-        hal/dspic30/dspic30_clock.c hal/dspic30/dspic30_gpio.c hal/dspic30/dspic30_uart.c \
-        hal/dspic30/dspic30_nvm.c drivers/epuck/epuck_selector.c vm/node_description.c \
-        tests/cross/bootloader_image.c -o "$elf"
-    "$size_tool" -A "$elf" | awk '
+        "${image_sources[@]}" tests/cross/simulated_registers.c "tests/cross/${image}_image.c" \
+        -o "$elf"
+    # The simulated register file is no RAM of the chip's.
+    local simulated
+    simulated=$("${size_tool%size}nm" -S "$elf" | awk '$4 == "registers" { print $2 }')
+    simulated=$((16#${simulated:-0}))
+    "$size_tool" -A "$elf" | awk -v image="$image" -v simulated="$simulated" '
         $1 ~ /^\.(text|init|fini|vectors)/ { code += $2 }
         $1 ~ /^\.rodata/ { constant += $2 }
         $1 ~ /^\.data$/ { data += $2 }
         $1 ~ /^\.bss$/ { bss += $2 }
-        END { printf "  linked bootloader image: %d bytes of code, %d of constant data, %d of initialised data, %d of RAM\n",
-                     code, constant, data, data + bss }'
+        END { printf "  linked %s image: %d bytes of code, %d of constant data, %d of initialised data, %d of RAM\n",
+                     image, code, constant, data, data + bss - simulated }'
 }
 
 check avr avr-gcc avr-size -mmcu=atmega1284p
 image avr avr-gcc avr-size -mmcu=atmega1284p
-bootloader_image avr avr-gcc avr-size -mmcu=atmega1284p
+dspic30_image bootloader avr avr-gcc avr-size -mmcu=atmega1284p
+dspic30_image application avr avr-gcc avr-size -mmcu=atmega1284p
 check arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb
 image arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb --specs=nano.specs \
     --specs=nosys.specs
-bootloader_image arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb \
+dspic30_image bootloader arm arm-none-eabi-gcc arm-none-eabi-size -mcpu=cortex-m4 -mthumb \
     --specs=nano.specs --specs=nosys.specs

@@ -30,7 +30,7 @@ declare -A sources=(
     [ide]="$client_sources tools/ide/requests.cpp tests/fuzz/ide_requests_fuzzer.cpp"
 )
 declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="" [files]="" [ide]="")
-declare -A max_length=([vm]=1024 [node]=4096 [compiler]=4096 [client]=4096 [files]=8192 [ide]=4096)
+declare -A max_length=([vm]=1024 [node]=4096 [compiler]=1048576 [client]=4096 [files]=8192 [ide]=4096)
 # Folders of real inputs a target starts from, besides its own corpus.
 declare -A seeds=([compiler]="examples tests/compiler/programs"
                   [files]="tests/bootloader/hex tests/arena/data"
@@ -40,7 +40,8 @@ targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files ide)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
-includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba)
+includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba
+          '-DTARGET_CONFIG="hal/host/host_config.h"')
 
 for target in "${targets[@]}"; do
     [ -n "${sources[$target]:-}" ] || { echo "fuzz: unknown target '$target'" >&2; exit 2; }

@@ -8,7 +8,8 @@ packages=(
     libgtest-dev                                   # tests
     clang libclang-rt-14-dev                       # fuzzing (libFuzzer) and sanitizers
     gcc-avr avr-libc binutils-avr                  # cross-check: 16-bit int
-    gcc-arm-none-eabi libnewlib-arm-none-eabi      # cross-check: Cortex-M
+    gcc-arm-none-eabi libnewlib-arm-none-eabi      # cross-check: Cortex-M; make stm32f4
+    qemu-system-arm                                # the STM32F4 image's tests (QEMU netduinoplus2)
     aseba libdashel-dev locales                    # the reference implementation (tests only)
     valgrind                                       # instruction counts in benchmarks
     python3                                        # test and benchmark scripts

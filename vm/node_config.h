@@ -1,6 +1,5 @@
-// Tunables of the node layer. A target overrides them in its own config
-// header, named by VM_TARGET_CONFIG on the compiler's command line (the same
-// header as the VM's switches); these are the defaults.
+// Tunables of the node layer, with their defaults. A target overrides them
+// in its one configuration header, named by TARGET_CONFIG (vm_config.h).
 
 #ifndef NODE_CONFIG_H
 #define NODE_CONFIG_H

@@ -1,12 +1,13 @@
-// Feature switches of the VM. A target sets them in its own config header,
-// named by VM_TARGET_CONFIG on the compiler's command line; these are the
-// defaults. Memory sizes are not here: the node gives the VM its memory.
+// Feature switches of the VM, with their defaults. A target sets them in its
+// one configuration header, which every firmware and host build names with
+// TARGET_CONFIG (docs/porting.md); the VM alone also builds without one.
+// Memory sizes are not here: the node gives the VM its memory.
 
 #ifndef VM_CONFIG_H
 #define VM_CONFIG_H
 
-#ifdef VM_TARGET_CONFIG
-#include VM_TARGET_CONFIG
+#ifdef TARGET_CONFIG
+#include TARGET_CONFIG
 #endif
 
 // Dispatch through a table of label addresses (a GNU extension) instead of a

@@ -11,7 +11,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 #define EPUCK_ACCELEROMETER_AXES 3u
 // Samples averaged for the offsets (§3.3: 50).
@@ -33,8 +33,8 @@ typedef struct epuck_accelerometer {
 
 // The ADC channels of the three axes (bit n = ANn).
 #define EPUCK_ACCELEROMETER_CHANNELS                                                               \
-    ((uint16_t)((1u << HAL_ADC_ACCELEROMETER_X) | (1u << HAL_ADC_ACCELEROMETER_Y) |                \
-                (1u << HAL_ADC_ACCELEROMETER_Z)))
+    ((uint16_t)((1u << EPUCK_ADC_ACCELEROMETER_X) | (1u << EPUCK_ADC_ACCELEROMETER_Y) |            \
+                (1u << EPUCK_ADC_ACCELEROMETER_Z)))
 
 // Prepares the accelerometer, uncalibrated.
 void epuck_accelerometer_init(epuck_accelerometer *accelerometer, hal_board *board);

@@ -53,7 +53,7 @@ static void scan_finished(void *context, const uint16_t *values, uint8_t count)
     analog->count = (uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE);
     next = source_at((uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE));
     if (source_channels(analog, next) != source_channels(analog, analog->scanning))
-        hal_adc_scan_select(analog->board, source_channels(analog, next));
+        epuck_board_adc_scan_select(analog->board, source_channels(analog, next));
     analog->scanning = next;
 }
 
@@ -71,14 +71,14 @@ bool epuck_analog_start(epuck_analog *analog,
     // then an ambient one.
     analog->count = COUNT_LIT_FINISHED;
     analog->scanning = EPUCK_ANALOG_MICROPHONES;
-    return hal_adc_scan_start(board, EPUCK_MICROPHONE_CHANNELS, scan_finished, analog);
+    return epuck_board_adc_scan_start(board, EPUCK_MICROPHONE_CHANNELS, scan_finished, analog);
 }
 
 void epuck_analog_stop(epuck_analog *analog)
 {
     uint8_t pair;
 
-    hal_adc_scan_stop(analog->board);
+    epuck_board_adc_scan_stop(analog->board);
     for (pair = 0; pair < EPUCK_PROXIMITY_PAIRS; pair++)
-        hal_pin_write(analog->board, (hal_pin)(HAL_PIN_IR_PULSE_0_4 + pair), false);
+        epuck_board_pin_write(analog->board, (epuck_pin)(EPUCK_PIN_IR_PULSE_0_4 + pair), false);
 }

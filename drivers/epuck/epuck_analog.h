@@ -1,4 +1,4 @@
-// The analog sequencer: one ADC scan running HAL_ADC_SCAN_RATE_HZ times a
+// The analog sequencer: one ADC scan running EPUCK_ADC_SCAN_RATE_HZ times a
 // second, shared by the microphones, the accelerometer and the proximity
 // sensors as the library's advanced scan shares it (hardware §3.2). A cycle
 // is EPUCK_ANALOG_CYCLE scans; most scans convert the microphones, one the
@@ -16,7 +16,7 @@
 #include "epuck_accelerometer.h"
 #include "epuck_microphones.h"
 #include "epuck_proximity.h"
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 // Scans per cycle: 16384 / 65 ≈ 252 pair measurements a second (§3.2).
 #define EPUCK_ANALOG_CYCLE 65u

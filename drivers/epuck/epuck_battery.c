@@ -4,5 +4,5 @@
 
 bool epuck_battery_ok(hal_board *board)
 {
-    return hal_pin_read(board, HAL_PIN_BATTERY_LOW);
+    return epuck_board_pin_read(board, EPUCK_PIN_BATTERY_LOW);
 }

@@ -7,7 +7,7 @@
 
 #include <stdbool.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 // Whether the battery is above 3.4 V (the BATT_LOW line is high).
 bool epuck_battery_ok(hal_board *board);

@@ -140,7 +140,8 @@ static bool write_table(hal_board *board, const register_value *table, uint16_t 
     uint16_t i;
 
     for (i = 0; i < count; i++) {
-        if (!hal_i2c_write(board, HAL_I2C_CAMERA_ADDRESS, table[i].reg, &table[i].value, 1))
+        if (!epuck_board_i2c_write(
+              board, EPUCK_I2C_CAMERA_ADDRESS, table[i].reg, &table[i].value, 1))
             return false;
     }
     return true;
@@ -154,11 +155,12 @@ bool epuck_camera_init(epuck_camera *camera, hal_board *board)
     camera->board = board;
     camera->model = EPUCK_CAMERA_NONE;
     camera->captured = false;
+    camera->reading = false;
     camera->last_capture_ms = 0;
-    hal_pin_write(board, HAL_PIN_CAMERA_RESET, false);
+    epuck_board_pin_write(board, EPUCK_PIN_CAMERA_RESET, false);
     hal_delay_microseconds(board, RESET_PULSE_US);
-    hal_pin_write(board, HAL_PIN_CAMERA_RESET, true);
-    if (!hal_i2c_read(board, HAL_I2C_CAMERA_ADDRESS, REGISTER_ID_HIGH, id, sizeof id) ||
+    epuck_board_pin_write(board, EPUCK_PIN_CAMERA_RESET, true);
+    if (!epuck_board_i2c_read(board, EPUCK_I2C_CAMERA_ADDRESS, REGISTER_ID_HIGH, id, sizeof id) ||
         id[1] != ID_LOW)
         return false;
     if (id[0] == ID_HIGH_PO3030)
@@ -185,22 +187,32 @@ bool epuck_camera_capture(epuck_camera *camera,
                           int16_t *blue)
 {
     uint32_t now = hal_milliseconds(camera->board);
-    uint16_t row;
+    epuck_camera_step step;
     uint16_t i;
 
     if (camera->model == EPUCK_CAMERA_NONE)
         return false;
-    if (camera->captured && now - camera->last_capture_ms < EPUCK_CAMERA_FRAME_INTERVAL_MS)
+    if (!camera->reading) {
+        uint16_t row;
+        if (camera->captured && now - camera->last_capture_ms < EPUCK_CAMERA_FRAME_INTERVAL_MS)
+            return false;
+        if (line_percent < 0)
+            line_percent = 0;
+        if (line_percent > PERCENT - 1)
+            line_percent = PERCENT - 1;
+        row = (uint16_t)((uint16_t)line_percent * EPUCK_CAMERA_WINDOW_ROWS / PERCENT);
+        epuck_board_camera_start(camera->board, row, camera->row, EPUCK_CAMERA_ROW_BYTES);
+        camera->reading = true;
+    }
+    step = epuck_board_camera_step(camera->board);
+    if (step == EPUCK_CAMERA_READING)
         return false;
-    if (line_percent < 0)
-        line_percent = 0;
-    if (line_percent > PERCENT - 1)
-        line_percent = PERCENT - 1;
-    row = (uint16_t)((uint16_t)line_percent * EPUCK_CAMERA_WINDOW_ROWS / PERCENT);
-    if (!hal_camera_read_row(camera->board, row, camera->row, EPUCK_CAMERA_ROW_BYTES))
-        return false;
+    // Done or failed, the next read waits for the interval.
+    camera->reading = false;
     camera->captured = true;
     camera->last_capture_ms = now;
+    if (step == EPUCK_CAMERA_FAILED)
+        return false;
     for (i = 0; i < EPUCK_CAMERA_LINE_PIXELS; i++) {
         // Every second pixel; the sensor sends R5G3 then G3B5 (§3.5).
         uint8_t first = camera->row[4u * i];

@@ -11,7 +11,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 #define EPUCK_CAMERA_LINE_PIXELS 60u
 // Rows of the window the line can be taken from.
@@ -19,9 +19,6 @@
 // Pixels the sensor sends per row of the window, 2 bytes each.
 #define EPUCK_CAMERA_ROW_PIXELS 120u
 #define EPUCK_CAMERA_ROW_BYTES  (2u * EPUCK_CAMERA_ROW_PIXELS)
-// Where in the image the line is by default, in percent of its height (the
-// GCtronic firmware's cam.line, §6.1).
-#define EPUCK_CAMERA_DEFAULT_LINE 50
 
 typedef enum epuck_camera_model {
     EPUCK_CAMERA_NONE, // no camera answered
@@ -33,7 +30,8 @@ typedef struct epuck_camera {
     hal_board *board;
     epuck_camera_model model;
     uint32_t last_capture_ms;
-    bool captured; // at least one line read
+    bool captured; // at least one line read (or failed)
+    bool reading;  // a row read is under way on the board
     uint8_t row[EPUCK_CAMERA_ROW_BYTES];
 } epuck_camera;
 
@@ -45,11 +43,13 @@ bool epuck_camera_init(epuck_camera *camera, hal_board *board);
 // The camera found at init.
 epuck_camera_model epuck_camera_model_of(const epuck_camera *camera);
 
-// When a camera is present and at least EPUCK_CAMERA_FRAME_INTERVAL_MS have
-// passed since the last line, reads the line at `line_percent` (0..99,
-// clamped) of the image height into `red`, `green`, `blue`
-// (EPUCK_CAMERA_LINE_PIXELS each) and returns true; otherwise returns false,
-// writing nothing. May wait up to one frame on the robot.
+// Reads lines in steps, one per call, never waiting for a frame: when a
+// camera is present and at least EPUCK_CAMERA_FRAME_INTERVAL_MS have passed
+// since the last line, starts reading the line at `line_percent` (0..99,
+// clamped) of the image height; when a read finishes, writes the line into
+// `red`, `green`, `blue` (EPUCK_CAMERA_LINE_PIXELS each) and returns true.
+// Otherwise returns false, writing nothing (a failed read waits for the
+// interval too).
 bool epuck_camera_capture(epuck_camera *camera,
                           int16_t line_percent,
                           int16_t *red,

@@ -2,13 +2,13 @@
 
 #include "epuck_leds.h"
 
-static hal_pin led_pin(uint16_t led)
+static epuck_pin led_pin(uint16_t led)
 {
     if (led == EPUCK_LED_BODY)
-        return HAL_PIN_BODY_LED;
+        return EPUCK_PIN_BODY_LED;
     if (led == EPUCK_LED_FRONT)
-        return HAL_PIN_FRONT_LED;
-    return (hal_pin)(HAL_PIN_LED_0 + led);
+        return EPUCK_PIN_FRONT_LED;
+    return (epuck_pin)(EPUCK_PIN_LED_0 + led);
 }
 
 void epuck_leds_init(epuck_leds *leds, hal_board *board)
@@ -18,7 +18,7 @@ void epuck_leds_init(epuck_leds *leds, hal_board *board)
     leds->board = board;
     for (led = 0; led < EPUCK_LED_COUNT; led++) {
         leds->on[led] = false;
-        hal_pin_write(board, led_pin(led), false);
+        epuck_board_pin_write(board, led_pin(led), false);
     }
 }
 
@@ -27,7 +27,7 @@ void epuck_leds_set(epuck_leds *leds, uint16_t led, bool on)
     if (led >= EPUCK_LED_COUNT || leds->on[led] == on)
         return;
     leds->on[led] = on;
-    hal_pin_write(leds->board, led_pin(led), on);
+    epuck_board_pin_write(leds->board, led_pin(led), on);
 }
 
 bool epuck_leds_get(const epuck_leds *leds, uint16_t led)

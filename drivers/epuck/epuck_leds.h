@@ -7,7 +7,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 #define EPUCK_RING_LED_COUNT 8u
 

@@ -8,7 +8,7 @@ static void start_window(epuck_microphones *microphones)
 
     microphones->window_samples = 0;
     for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++) {
-        microphones->window_min[i] = HAL_ADC_MAX_VALUE;
+        microphones->window_min[i] = EPUCK_ADC_MAX_VALUE;
         microphones->window_max[i] = 0;
     }
 }

@@ -8,14 +8,14 @@
 
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 #define EPUCK_MICROPHONE_COUNT  3u
 #define EPUCK_MICROPHONE_WINDOW 100u
 
 // The ADC channels of the three microphones (bit n = ANn).
 #define EPUCK_MICROPHONE_CHANNELS                                                                  \
-    ((uint16_t)(((1u << EPUCK_MICROPHONE_COUNT) - 1u) << HAL_ADC_MICROPHONE_0))
+    ((uint16_t)(((1u << EPUCK_MICROPHONE_COUNT) - 1u) << EPUCK_ADC_MICROPHONE_0))
 
 typedef struct epuck_microphones {
     hal_board *board;

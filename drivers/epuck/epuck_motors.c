@@ -16,25 +16,25 @@ static const uint8_t phase_pattern[PHASE_COUNT] = {
     0x9, // A=1 B=0 C=0 D=1
 };
 
-static hal_pin first_pin(const epuck_motor *motor)
+static epuck_pin first_pin(const epuck_motor *motor)
 {
-    return motor->side == EPUCK_MOTOR_LEFT ? HAL_PIN_MOTOR_LEFT_A : HAL_PIN_MOTOR_RIGHT_A;
+    return motor->side == EPUCK_MOTOR_LEFT ? EPUCK_PIN_MOTOR_LEFT_A : EPUCK_PIN_MOTOR_RIGHT_A;
 }
 
-static hal_timer motor_timer(const epuck_motor *motor)
+static epuck_timer motor_timer(const epuck_motor *motor)
 {
-    return motor->side == EPUCK_MOTOR_LEFT ? HAL_TIMER_MOTOR_LEFT : HAL_TIMER_MOTOR_RIGHT;
+    return motor->side == EPUCK_MOTOR_LEFT ? EPUCK_TIMER_MOTOR_LEFT : EPUCK_TIMER_MOTOR_RIGHT;
 }
 
 // Drives the four phase lines with `pattern` (bit 3 = A ... bit 0 = D).
 static void write_phases(epuck_motor *motor, uint8_t pattern)
 {
     uint8_t i;
-    hal_pin pin = first_pin(motor);
+    epuck_pin pin = first_pin(motor);
 
     for (i = 0; i < PHASE_PINS; i++)
-        hal_pin_write(
-          motor->board, (hal_pin)(pin + i), ((pattern >> (PHASE_PINS - 1u - i)) & 1u) != 0);
+        epuck_board_pin_write(
+          motor->board, (epuck_pin)(pin + i), ((pattern >> (PHASE_PINS - 1u - i)) & 1u) != 0);
 }
 
 // The timer's callback: one step in the direction of the speed. The motors
@@ -60,7 +60,7 @@ void epuck_motor_init(epuck_motor *motor, hal_board *board, epuck_motor_side sid
     motor->speed = 0;
     motor->phase = 0;
     motor->steps = 0;
-    hal_timer_stop(board, motor_timer(motor));
+    epuck_board_timer_stop(board, motor_timer(motor));
     write_phases(motor, 0);
 }
 
@@ -76,7 +76,7 @@ void epuck_motor_set_speed(epuck_motor *motor, int16_t speed)
         return;
     if (speed == 0) {
         // Coils left on would overheat the motor (§3.6).
-        hal_timer_stop(motor->board, motor_timer(motor));
+        epuck_board_timer_stop(motor->board, motor_timer(motor));
         motor->speed = 0;
         write_phases(motor, 0);
         return;
@@ -87,7 +87,7 @@ void epuck_motor_set_speed(epuck_motor *motor, int16_t speed)
         motor->speed = speed;
         hal_critical_leave(motor->board, state);
     }
-    hal_timer_start(
+    epuck_board_timer_start(
       motor->board, motor_timer(motor), MICROSECONDS_PER_SECOND / magnitude, step, motor);
 }
 

@@ -8,7 +8,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 // The speed range of the library's API (§3.6): one wheel turn a second.
 #define EPUCK_MOTOR_MAX_SPEED 1000

@@ -3,9 +3,9 @@
 
 #include "epuck_proximity.h"
 
-static hal_pin pulse_pin(uint8_t pair)
+static epuck_pin pulse_pin(uint8_t pair)
 {
-    return (hal_pin)(HAL_PIN_IR_PULSE_0_4 + pair);
+    return (epuck_pin)(EPUCK_PIN_IR_PULSE_0_4 + pair);
 }
 
 void epuck_proximity_init(epuck_proximity *proximity, hal_board *board)
@@ -23,12 +23,12 @@ void epuck_proximity_init(epuck_proximity *proximity, hal_board *board)
         proximity->offset[i] = 0;
     }
     for (i = 0; i < EPUCK_PROXIMITY_PAIRS; i++)
-        hal_pin_write(board, pulse_pin(i), false);
+        epuck_board_pin_write(board, pulse_pin(i), false);
 }
 
 uint16_t epuck_proximity_channels(const epuck_proximity *proximity)
 {
-    uint8_t first = (uint8_t)(HAL_ADC_PROXIMITY_0 + proximity->pair);
+    uint8_t first = (uint8_t)(EPUCK_ADC_PROXIMITY_0 + proximity->pair);
     return (uint16_t)((1u << first) | (1u << (first + EPUCK_PROXIMITY_PAIRS)));
 }
 
@@ -36,7 +36,7 @@ void epuck_proximity_ambient_sampled(epuck_proximity *proximity, const uint16_t 
 {
     proximity->ambient_reading[proximity->pair] = values[0];
     proximity->ambient_reading[proximity->pair + EPUCK_PROXIMITY_PAIRS] = values[1];
-    hal_pin_write(proximity->board, pulse_pin(proximity->pair), true);
+    epuck_board_pin_write(proximity->board, pulse_pin(proximity->pair), true);
 }
 
 // A full set is complete: it is ready, and goes into the calibration while
@@ -62,7 +62,7 @@ void epuck_proximity_lit_sampled(epuck_proximity *proximity, const uint16_t *val
 {
     uint8_t pair = proximity->pair;
 
-    hal_pin_write(proximity->board, pulse_pin(pair), false);
+    epuck_board_pin_write(proximity->board, pulse_pin(pair), false);
     proximity->reflected[pair] = (int16_t)((int32_t)proximity->ambient_reading[pair] - values[0]);
     proximity->reflected[pair + EPUCK_PROXIMITY_PAIRS] =
       (int16_t)((int32_t)proximity->ambient_reading[pair + EPUCK_PROXIMITY_PAIRS] - values[1]);

@@ -14,7 +14,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 #define EPUCK_PROXIMITY_COUNT 8u
 #define EPUCK_PROXIMITY_PAIRS 4u

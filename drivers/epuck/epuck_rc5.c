@@ -1,5 +1,5 @@
 // RC5 decoding from the falling edge that starts a frame, as the library
-// does it (§3.9), with HAL_TIMER_SPARE instead of its 0.1 ms agenda ticks.
+// does it (§3.9), with EPUCK_TIMER_SPARE instead of its 0.1 ms agenda ticks.
 
 #include "epuck_rc5.h"
 
@@ -20,31 +20,31 @@ static void falling_edge(void *context);
 
 static void listen(epuck_rc5 *rc5)
 {
-    hal_pin_watch_falling_edge(rc5->board, HAL_PIN_REMOTE, falling_edge, rc5);
+    epuck_board_pin_watch_falling_edge(rc5->board, EPUCK_PIN_REMOTE, falling_edge, rc5);
 }
 
 static void sample(void *context)
 {
     epuck_rc5 *rc5 = context;
-    bool high = hal_pin_read(rc5->board, HAL_PIN_REMOTE);
+    bool high = epuck_board_pin_read(rc5->board, EPUCK_PIN_REMOTE);
 
     if (rc5->checking) {
         rc5->checking = false;
         if (high) { // not a start bit: noise
-            hal_timer_stop(rc5->board, HAL_TIMER_SPARE);
+            epuck_board_timer_stop(rc5->board, EPUCK_TIMER_SPARE);
             listen(rc5);
             return;
         }
-        hal_timer_start(rc5->board, HAL_TIMER_SPARE, FIRST_SAMPLE_US, sample, rc5);
+        epuck_board_timer_start(rc5->board, EPUCK_TIMER_SPARE, FIRST_SAMPLE_US, sample, rc5);
         return;
     }
     if (rc5->bits_left == FRAME_SAMPLES)
-        hal_timer_start(rc5->board, HAL_TIMER_SPARE, SAMPLE_INTERVAL_US, sample, rc5);
+        epuck_board_timer_start(rc5->board, EPUCK_TIMER_SPARE, SAMPLE_INTERVAL_US, sample, rc5);
     rc5->shift = (uint16_t)((rc5->shift << 1) | (high ? 1u : 0u));
     rc5->bits_left--;
     if (rc5->bits_left != 0)
         return;
-    hal_timer_stop(rc5->board, HAL_TIMER_SPARE);
+    epuck_board_timer_stop(rc5->board, EPUCK_TIMER_SPARE);
     rc5->command = (uint8_t)(rc5->shift & COMMAND_MASK);
     rc5->address = (uint8_t)((rc5->shift >> COMMAND_BITS) & ADDRESS_MASK);
     rc5->toggle = (uint8_t)((rc5->shift >> (COMMAND_BITS + ADDRESS_BITS)) & 1u);
@@ -57,11 +57,11 @@ static void falling_edge(void *context)
     epuck_rc5 *rc5 = context;
 
     // The edges inside the frame are sampled, not signalled.
-    hal_pin_unwatch(rc5->board, HAL_PIN_REMOTE);
+    epuck_board_pin_unwatch(rc5->board, EPUCK_PIN_REMOTE);
     rc5->checking = true;
     rc5->bits_left = FRAME_SAMPLES;
     rc5->shift = 0;
-    hal_timer_start(rc5->board, HAL_TIMER_SPARE, CHECK_DELAY_US, sample, rc5);
+    epuck_board_timer_start(rc5->board, EPUCK_TIMER_SPARE, CHECK_DELAY_US, sample, rc5);
 }
 
 bool epuck_rc5_init(epuck_rc5 *rc5, hal_board *board)
@@ -74,7 +74,7 @@ bool epuck_rc5_init(epuck_rc5 *rc5, hal_board *board)
     rc5->toggle = 0;
     rc5->address = 0;
     rc5->command = 0;
-    return hal_pin_watch_falling_edge(board, HAL_PIN_REMOTE, falling_edge, rc5);
+    return epuck_board_pin_watch_falling_edge(board, EPUCK_PIN_REMOTE, falling_edge, rc5);
 }
 
 bool epuck_rc5_take(epuck_rc5 *rc5, uint8_t *toggle, uint8_t *address, uint8_t *command)

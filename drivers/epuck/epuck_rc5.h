@@ -1,7 +1,7 @@
 // The TV-remote receiver (hardware §3.9): RC5 frames decoded by timing. The
 // receiver's output idles high and goes low while it sees the carrier; a
 // falling edge (the middle of the first start bit) starts the decoding,
-// which then samples the line on HAL_TIMER_SPARE: once to check the second
+// which then samples the line on EPUCK_TIMER_SPARE: once to check the second
 // start bit, then the first half of each of the toggle, 5 address and 6
 // command bits, in which a high line is a 1 (RC5 Manchester code: a 1 is a
 // half bit without carrier, then one with).
@@ -12,7 +12,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 typedef struct epuck_rc5 {
     hal_board *board;

@@ -14,7 +14,7 @@ uint16_t epuck_selector_read(hal_board *board)
     uint16_t bit;
 
     for (bit = 0; bit < SELECTOR_BITS; bit++) {
-        bool high = hal_pin_read(board, (hal_pin)(HAL_PIN_SELECTOR_0 + bit));
+        bool high = epuck_board_pin_read(board, (epuck_pin)(EPUCK_PIN_SELECTOR_0 + bit));
         if (high == (EPUCK_SELECTOR_ACTIVE_HIGH != 0))
             position = (uint16_t)(position | (1u << bit));
     }

@@ -5,7 +5,7 @@
 
 #include <stdint.h>
 
-#include "hal/hal.h"
+#include "epuck_board.h"
 
 #define EPUCK_SELECTOR_POSITIONS 16u
 

@@ -1,19 +1,19 @@
 // The 12-bit ADC (§2.3): single conversions started by hand, and scans of a
 // few channels converted back to back by the ADC's own sequencer, with an
-// interrupt after each scan at DSPIC30_ADC_SCAN_RATE_HZ (as the library's
+// interrupt after each scan at EPUCK_ADC_SCAN_RATE_HZ (as the library's
 // advanced driver, used by the upstream Aseba firmware).
 
 #include "dspic30_board.h"
 #include "dspic30_registers.h"
 
 #define MICROSECONDS_PER_SECOND 1000000ul
-#define CYCLES_PER_SCAN         (DSPIC30_FCY_HZ / DSPIC30_ADC_SCAN_RATE_HZ)
+#define CYCLES_PER_SCAN         (DSPIC30_FCY_HZ / EPUCK_ADC_SCAN_RATE_HZ)
 #define TAD_PER_CHANNEL         (DSPIC30_ADC_SAMPLE_TAD + DSPIC30_ADC_CONVERSION_TAD)
 // Tad = Tcy × (ADCS + 1) / 2: twice the cycles give whole numbers.
 #define HALF_CYCLES_PER_TAD_STEP 2u
 
 typedef char
-  scan_rate_is_a_whole_number_of_cycles[DSPIC30_FCY_HZ % DSPIC30_ADC_SCAN_RATE_HZ == 0 ? 1 : -1];
+  scan_rate_is_a_whole_number_of_cycles[DSPIC30_FCY_HZ % EPUCK_ADC_SCAN_RATE_HZ == 0 ? 1 : -1];
 
 static uint8_t count_channels(uint16_t mask)
 {
@@ -61,11 +61,11 @@ void dspic30_adc_init(hal_board *board)
     dspic30_write(DSPIC30_ADCON1, DSPIC30_ADCON1_ADON);
 }
 
-uint16_t hal_adc_read(hal_board *board, uint8_t channel)
+uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
 {
     uint16_t attempts;
 
-    if (channel >= HAL_ADC_CHANNEL_COUNT || board->adc_scan_mask != 0)
+    if (channel >= EPUCK_ADC_CHANNEL_COUNT || board->adc_scan_mask != 0)
         return 0;
     dspic30_write(DSPIC30_ADCHS, channel);
     dspic30_set_bits(DSPIC30_ADCON1, DSPIC30_ADCON1_SAMP);
@@ -103,14 +103,14 @@ static void configure_scan(hal_board *board, uint16_t mask, uint8_t count, uint1
 static bool scan_parameters(uint16_t mask, uint8_t *count, uint16_t *adcs)
 {
     *count = count_channels(mask);
-    return *count >= DSPIC30_ADC_SCAN_MIN_CHANNELS && *count <= DSPIC30_ADC_SCAN_MAX_CHANNELS &&
+    return *count >= EPUCK_ADC_SCAN_MIN_CHANNELS && *count <= EPUCK_ADC_SCAN_MAX_CHANNELS &&
            dspic30_adc_scan_clock(*count, adcs);
 }
 
-bool hal_adc_scan_start(hal_board *board,
-                        uint16_t channel_mask,
-                        hal_adc_scan_callback callback,
-                        void *context)
+bool epuck_board_adc_scan_start(hal_board *board,
+                                uint16_t channel_mask,
+                                epuck_adc_scan_callback callback,
+                                void *context)
 {
     uint8_t count;
     uint16_t adcs;
@@ -126,7 +126,7 @@ bool hal_adc_scan_start(hal_board *board,
     return true;
 }
 
-bool hal_adc_scan_select(hal_board *board, uint16_t channel_mask)
+bool epuck_board_adc_scan_select(hal_board *board, uint16_t channel_mask)
 {
     uint8_t count;
     uint16_t adcs;
@@ -140,7 +140,7 @@ bool hal_adc_scan_select(hal_board *board, uint16_t channel_mask)
     return true;
 }
 
-void hal_adc_scan_stop(hal_board *board)
+void epuck_board_adc_scan_stop(hal_board *board)
 {
     hal_critical_state state = hal_critical_enter(board);
     dspic30_write(DSPIC30_ADCON1, 0);
@@ -154,12 +154,12 @@ void hal_adc_scan_stop(hal_board *board)
 
 void dspic30_on_adc(hal_board *board)
 {
-    uint16_t values[DSPIC30_ADC_SCAN_MAX_CHANNELS];
+    uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
     uint8_t count = board->adc_scan_count;
     uint8_t i;
 
     dspic30_clear_bits(DSPIC30_IFS0, DSPIC30_IRQ0_ADC);
-    if (board->adc_scan_mask == 0 || count > DSPIC30_ADC_SCAN_MAX_CHANNELS)
+    if (board->adc_scan_mask == 0 || count > EPUCK_ADC_SCAN_MAX_CHANNELS)
         return;
     // The sequencer fills ADCBUF0.. in ascending channel order.
     for (i = 0; i < count; i++)

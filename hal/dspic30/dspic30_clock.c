@@ -104,6 +104,16 @@ void hal_critical_leave(hal_board *board, hal_critical_state state)
       (uint16_t)((status & (uint16_t)~DSPIC30_SR_IPL_MASK) | (state & DSPIC30_SR_IPL_MASK)));
 }
 
+void dspic30_reset_again_after_power_on(hal_board *board)
+{
+    // Some robots need a second reset after power-on (§1.8, as both Aseba
+    // versions do).
+    if (dspic30_read(DSPIC30_RCON) & DSPIC30_RCON_POR) {
+        dspic30_clear_bits(DSPIC30_RCON, DSPIC30_RCON_POR);
+        hal_reset(board);
+    }
+}
+
 void hal_reset(hal_board *board)
 {
     (void)board;

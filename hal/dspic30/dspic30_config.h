@@ -1,13 +1,21 @@
-// The dsPIC30F6014A on the e-puck in numbers: clock, memory sizes, the
+// The e-puck target (dsPIC30F6014A): every size and switch of the dsPIC
+// build in one place, with the chip in numbers: clock, memory sizes, the
 // values the HAL writes into registers, and every unverified (⚠) fact the
 // HAL relies on, each behind one name. Sections refer to the hardware fact
-// sheet (hardware/epuck1.md). Only constants: both the chip build and the
-// host board include it.
+// sheet (hardware/epuck1.md). The dsPIC build names this file as
+// TARGET_CONFIG; only constants, so that the host tests can compile the
+// port against it too.
 
 #ifndef DSPIC30_CONFIG_H
 #define DSPIC30_CONFIG_H
 
 #include <stdint.h>
+
+#include "dspic30_flash_layout.h"
+
+// --- the portable layers' switches -------------------------------------------------
+// Switch dispatch: XC16's support of `&&label` is unverified (vm/vm_config.h).
+#define VM_USE_COMPUTED_GOTO 0
 
 // --- clock (§1.6) ---------------------------------------------------------------
 #define DSPIC30_CRYSTAL_HZ       7372800ul
@@ -41,8 +49,12 @@
 #define DSPIC30_UART_CLOCKS_PER_BIT 16ul // UxBRG = FCY / (16 × baud) − 1
 #define DSPIC30_UART_BRG(baud)                                                                     \
     ((uint16_t)(DSPIC30_FCY_HZ / (DSPIC30_UART_CLOCKS_PER_BIT * (baud)) - 1ul))
-// A power of two over one 522-byte frame, as the GCtronic Aseba port uses.
-#define DSPIC30_LINK_RECEIVE_CAPACITY 1024u
+// The link's rings (hal.h). Reception: a power of two over one 522-byte
+// frame, as the GCtronic Aseba port uses. Transmission: one whole frame,
+// rounded up to the node's 32-byte pieces, so that a reply never waits; the
+// transmit interrupt drains it (1,024 more bytes would not fit the 8 KB).
+#define HAL_LINK_RECEIVE_CAPACITY  1024u
+#define HAL_LINK_TRANSMIT_CAPACITY 544u
 
 // --- interrupt priorities (§1.7; 7 is highest, 0 disables) ------------------------
 // The ADC scan comes 16384 times a second and must not be late; the UART's
@@ -59,20 +71,19 @@
 // ⚠ The period formula (PR + 1) × prescale × Tcy is recalled from the data
 // sheet, not read (§2.2, §7): every period computation uses this one offset.
 #define DSPIC30_TIMER_PERIOD_OFFSET 1u
-#define DSPIC30_TIMER_MIN_PERIOD_US 20ul      // shorter would flood the CPU
-#define DSPIC30_TIMER_MAX_PERIOD_US 1000000ul // 65536 × 256 × Tcy is 1.14 s
+// The e-puck's board asks for 20 µs to 1 s (EPUCK_TIMER_*_PERIOD_US):
+// 65536 × 256 × Tcy is 1.14 s, checked in dspic30_timers.c.
 
 // --- ADC (§2.3) ------------------------------------------------------------------------
-// Scans interrupt at 16384 Hz like the library's advanced driver: a scan of
-// n channels takes n × (SAMC + 14) Tad with Tad = Tcy × (ADCS + 1) / 2, so
-// ADCS + 1 = 2 × cycles-per-scan / (n × (SAMC + 14)).
-#define DSPIC30_ADC_SCAN_RATE_HZ        16384ul
+// Scans interrupt at EPUCK_ADC_SCAN_RATE_HZ (16384 Hz) like the library's
+// advanced driver: a scan of n channels takes n × (SAMC + 14) Tad with Tad =
+// Tcy × (ADCS + 1) / 2, so ADCS + 1 = 2 × cycles-per-scan / (n × (SAMC + 14)):
+// 2 to 6 channels (EPUCK_ADC_SCAN_*_CHANNELS) give valid ADCS; 1 channel
+// would need ADCS 119, 7 or more ADCS < 19.
 #define DSPIC30_ADC_SAMPLE_TAD          1u    // SAMC
 #define DSPIC30_ADC_CONVERSION_TAD      14u   // one conversion after sampling
 #define DSPIC30_ADC_MIN_ADCS            19u   // Tad >= 667 ns at 3.3 V (§2.3)
 #define DSPIC30_ADC_MAX_ADCS            63u   // 6-bit field
-#define DSPIC30_ADC_SCAN_MIN_CHANNELS   2u    // 1 channel would need ADCS 119
-#define DSPIC30_ADC_SCAN_MAX_CHANNELS   6u    // 7 or more would need ADCS < 19
 #define DSPIC30_ADC_SINGLE_ADCS         19u   // single reads: Tad = 678 ns
 #define DSPIC30_ADC_SAMPLE_WAIT_US      10u   // sampling time of a single read
 #define DSPIC30_ADC_CONVERSION_ATTEMPTS 2000u // polls of DONE before giving up
@@ -87,13 +98,11 @@
 // Polls of a bus step before the transaction is abandoned.
 #define DSPIC30_I2C_STEP_ATTEMPTS 5000u
 
-// --- data EEPROM and program flash (§1.1, §1.3, §1.4) ----------------------------
+// --- data EEPROM and program flash (§1.1, §1.3, §1.4; geometry: dspic30_flash_layout.h)
 #define DSPIC30_EEPROM_WORDS             2048u
+#define DSPIC30_EEPROM_ERASED            0xFFFFu
 #define DSPIC30_EEPROM_PAGE              0x7Fu   // TBLPAG / NVMADRU of the EEPROM
 #define DSPIC30_EEPROM_BASE              0xF000u // offset of word 0 in that page
-#define DSPIC30_FLASH_ROW_INSTRUCTIONS   32u
-#define DSPIC30_FLASH_ROW_SPAN           0x40ul // PC units: 2 per instruction
-#define DSPIC30_FLASH_END                0x018000ul
 #define DSPIC30_NVMCON_FLASH_ROW_ERASE   0x4041u // [BL]; ICSP uses 0x4071
 #define DSPIC30_NVMCON_FLASH_ROW_WRITE   0x4001u
 #define DSPIC30_NVMCON_EEPROM_WORD_ERASE 0x4044u
@@ -106,12 +115,17 @@
 #define DSPIC30_NVM_WAIT_ATTEMPTS 60000u
 
 // --- camera pixel port (§3.5) ----------------------------------------------------------
-// Polls of a camera sync or clock line before a capture is abandoned.
 // ⚠ The levels of VSYNC/HREF during a frame/row and the PCLK edge on which a
 // byte is valid are not in the sources read (§3.5 only names the lines).
 #define DSPIC30_CAMERA_SYNC_ACTIVE_LEVEL 1
 #define DSPIC30_CAMERA_PCLK_LATCH_LEVEL  1
-#define DSPIC30_CAMERA_WAIT_ATTEMPTS     2000000ul
+// A step of a row read watches VSYNC for at most this many polls (a few
+// hundred microseconds) for a frame to begin; a read that sees none within
+// DSPIC30_CAMERA_FRAME_TIMEOUT_MS fails.
+#define DSPIC30_CAMERA_STEP_POLLS       400u
+#define DSPIC30_CAMERA_FRAME_TIMEOUT_MS 500u
+// Polls of HREF or PCLK, once a frame has begun, before the read is abandoned.
+#define DSPIC30_CAMERA_WAIT_ATTEMPTS 2000000ul
 
 // --- busy waiting --------------------------------------------------------------------------
 // ⚠ Cycles one iteration of the delay loop takes (a NOP plus loop overhead),

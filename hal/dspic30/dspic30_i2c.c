@@ -55,11 +55,11 @@ static bool finish(bool ok)
     return ok;
 }
 
-bool hal_i2c_write(hal_board *board,
-                   uint8_t device,
-                   uint8_t reg,
-                   const uint8_t *bytes,
-                   uint16_t count)
+bool epuck_board_i2c_write(hal_board *board,
+                           uint8_t device,
+                           uint8_t reg,
+                           const uint8_t *bytes,
+                           uint16_t count)
 {
     uint16_t i;
 
@@ -75,7 +75,11 @@ bool hal_i2c_write(hal_board *board,
     return finish(true);
 }
 
-bool hal_i2c_read(hal_board *board, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count)
+bool epuck_board_i2c_read(hal_board *board,
+                          uint8_t device,
+                          uint8_t reg,
+                          uint8_t *bytes,
+                          uint16_t count)
 {
     uint16_t i;
 

@@ -1,15 +1,15 @@
-// Data EEPROM and program flash through run-time self-programming (§1.2 to
-// §1.4): table reads, and erases/writes started with NVMCON and the
-// 0x55/0xAA key sequence. Erases name their target in NVMADRU:NVMADR
-// explicitly ([FPS] Table 11-5); writes select it through the table-write
-// latches.
+// Program flash (hal.h: 24-bit words, erased and programmed a row at a time)
+// and data EEPROM through run-time self-programming (§1.2 to §1.4): table
+// reads, and erases/writes started with NVMCON and the 0x55/0xAA key
+// sequence. Erases name their target in NVMADRU:NVMADR explicitly ([FPS]
+// Table 11-5); writes select it through the table-write latches.
 
 #include "dspic30_board.h"
 #include "dspic30_registers.h"
 
 #define ADDRESS_PAGE_SHIFT     16u
 #define ADDRESS_OFFSET_MASK    0xFFFFul
-#define WORD_ADDRESS_STEP      2u // PC units per word or instruction
+#define WORD_ADDRESS_STEP      2u // PC units per EEPROM word or instruction
 #define INSTRUCTION_HIGH_SHIFT 16u
 #define INSTRUCTION_HIGH_MASK  0x00FFu
 
@@ -45,16 +45,16 @@ static uint16_t eeprom_offset(uint16_t index)
     return (uint16_t)(DSPIC30_EEPROM_BASE + WORD_ADDRESS_STEP * index);
 }
 
-uint16_t hal_eeprom_read(hal_board *board, uint16_t index)
+uint16_t dspic30_eeprom_read(hal_board *board, uint16_t index)
 {
     (void)board;
     if (index >= DSPIC30_EEPROM_WORDS)
-        return HAL_EEPROM_ERASED;
+        return DSPIC30_EEPROM_ERASED;
     dspic30_write(DSPIC30_TBLPAG, DSPIC30_EEPROM_PAGE);
     return dspic30_table_read_low(eeprom_offset(index));
 }
 
-bool hal_eeprom_erase_word(hal_board *board, uint16_t index)
+bool dspic30_eeprom_erase_word(hal_board *board, uint16_t index)
 {
     if (index >= DSPIC30_EEPROM_WORDS)
         return false;
@@ -62,7 +62,7 @@ bool hal_eeprom_erase_word(hal_board *board, uint16_t index)
     return run_operation(board, DSPIC30_NVMCON_EEPROM_WORD_ERASE);
 }
 
-bool hal_eeprom_write_word(hal_board *board, uint16_t index, uint16_t value)
+bool dspic30_eeprom_write_word(hal_board *board, uint16_t index, uint16_t value)
 {
     if (index >= DSPIC30_EEPROM_WORDS)
         return false;
@@ -73,7 +73,7 @@ bool hal_eeprom_write_word(hal_board *board, uint16_t index, uint16_t value)
 
 static bool valid_row(uint32_t row_address)
 {
-    return row_address < DSPIC30_FLASH_END && row_address % DSPIC30_FLASH_ROW_SPAN == 0;
+    return row_address < HAL_FLASH_END && row_address % DSPIC30_FLASH_ROW_SPAN == 0;
 }
 
 uint32_t hal_flash_read(hal_board *board, uint32_t address)
@@ -82,30 +82,37 @@ uint32_t hal_flash_read(hal_board *board, uint32_t address)
     uint32_t high;
 
     (void)board;
-    if (address >= DSPIC30_FLASH_END || address % WORD_ADDRESS_STEP != 0)
+    if (address >= HAL_FLASH_END || address % WORD_ADDRESS_STEP != 0)
         return 0;
     dspic30_write(DSPIC30_TBLPAG, (uint16_t)(address >> ADDRESS_PAGE_SHIFT));
     high = dspic30_table_read_high(offset) & INSTRUCTION_HIGH_MASK;
     return (high << INSTRUCTION_HIGH_SHIFT) | dspic30_table_read_low(offset);
 }
 
-bool hal_flash_erase_row(hal_board *board, uint32_t row_address)
+uint32_t hal_flash_unit(hal_board *board, uint32_t address, uint32_t *unit_start)
 {
-    if (!valid_row(row_address))
+    (void)board;
+    if (address >= HAL_FLASH_END)
+        return 0;
+    *unit_start = address - address % DSPIC30_FLASH_ROW_SPAN;
+    return DSPIC30_FLASH_ROW_SPAN;
+}
+
+bool hal_flash_erase(hal_board *board, uint32_t unit_start)
+{
+    if (!valid_row(unit_start))
         return false;
-    set_erase_target((uint16_t)(row_address >> ADDRESS_PAGE_SHIFT),
-                     (uint16_t)(row_address & ADDRESS_OFFSET_MASK));
+    set_erase_target((uint16_t)(unit_start >> ADDRESS_PAGE_SHIFT),
+                     (uint16_t)(unit_start & ADDRESS_OFFSET_MASK));
     return run_operation(board, DSPIC30_NVMCON_FLASH_ROW_ERASE);
 }
 
-bool hal_flash_write_row(hal_board *board, uint32_t row_address, const uint32_t *instructions)
+// Fills the row's 32 write latches, then programs them at once.
+static bool program_row(hal_board *board, uint32_t row_address, const uint32_t *instructions)
 {
     uint16_t offset = (uint16_t)(row_address & ADDRESS_OFFSET_MASK);
     uint16_t i;
 
-    if (!valid_row(row_address))
-        return false;
-    // Fill the row's 32 write latches, then program them at once.
     dspic30_write(DSPIC30_TBLPAG, (uint16_t)(row_address >> ADDRESS_PAGE_SHIFT));
     for (i = 0; i < DSPIC30_FLASH_ROW_INSTRUCTIONS; i++) {
         uint16_t at = (uint16_t)(offset + WORD_ADDRESS_STEP * i);
@@ -114,4 +121,18 @@ bool hal_flash_write_row(hal_board *board, uint32_t row_address, const uint32_t 
           at, (uint16_t)((instructions[i] >> INSTRUCTION_HIGH_SHIFT) & INSTRUCTION_HIGH_MASK));
     }
     return run_operation(board, DSPIC30_NVMCON_FLASH_ROW_WRITE);
+}
+
+bool hal_flash_program(hal_board *board, uint32_t address, const uint32_t *words, uint16_t count)
+{
+    uint16_t done;
+
+    if (!valid_row(address) || count % DSPIC30_FLASH_ROW_INSTRUCTIONS != 0 ||
+        (uint32_t)count * WORD_ADDRESS_STEP > HAL_FLASH_END - address)
+        return false;
+    for (done = 0; done < count; done = (uint16_t)(done + DSPIC30_FLASH_ROW_INSTRUCTIONS)) {
+        if (!program_row(board, address + (uint32_t)done * WORD_ADDRESS_STEP, words + done))
+            return false;
+    }
+    return true;
 }

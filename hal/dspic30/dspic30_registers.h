@@ -16,6 +16,7 @@
 // --- core and system (§1.8) -------------------------------------------------
 #define DSPIC30_TBLPAG  0x0032u
 #define DSPIC30_SR      0x0042u
+#define DSPIC30_CORCON  0x0044u
 #define DSPIC30_INTCON1 0x0080u
 #define DSPIC30_INTCON2 0x0082u
 #define DSPIC30_RCON    0x0740u

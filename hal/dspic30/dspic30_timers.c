@@ -8,6 +8,14 @@
 #define MICROSECONDS_PER_SECOND 1000000ul
 #define TIMER_REGISTER_MAX      0xFFFFul
 #define PRESCALER_COUNT         4u
+#define LARGEST_PRESCALE        256u
+
+// The longest period the board promises fits the largest prescaler.
+typedef char longest_period_fits[(uint64_t)EPUCK_TIMER_MAX_PERIOD_US * DSPIC30_FCY_HZ <=
+                                     (uint64_t)(TIMER_REGISTER_MAX + 1u) * LARGEST_PRESCALE *
+                                       MICROSECONDS_PER_SECOND
+                                   ? 1
+                                   : -1];
 
 // The registers of one chip timer.
 typedef struct timer_registers {
@@ -21,43 +29,43 @@ typedef struct timer_registers {
     uint16_t priority_shift;
 } timer_registers;
 
-static const timer_registers timer_map[HAL_TIMER_COUNT] = {
-    [HAL_TIMER_AGENDA] = { DSPIC30_T2CON,
-                           DSPIC30_PR2,
-                           DSPIC30_TMR2,
-                           DSPIC30_IFS0,
-                           DSPIC30_IEC0,
-                           DSPIC30_IRQ0_T2,
-                           DSPIC30_IPC_T2,
-                           DSPIC30_SHIFT_T2 },
-    [HAL_TIMER_MOTOR_LEFT] = { DSPIC30_T5CON,
-                               DSPIC30_PR5,
-                               DSPIC30_TMR5,
-                               DSPIC30_IFS1,
-                               DSPIC30_IEC1,
-                               DSPIC30_IRQ1_T5,
-                               DSPIC30_IPC_T5,
-                               DSPIC30_SHIFT_T5 },
-    [HAL_TIMER_MOTOR_RIGHT] = { DSPIC30_T4CON,
-                                DSPIC30_PR4,
-                                DSPIC30_TMR4,
-                                DSPIC30_IFS1,
-                                DSPIC30_IEC1,
-                                DSPIC30_IRQ1_T4,
-                                DSPIC30_IPC_T4,
-                                DSPIC30_SHIFT_T4 },
-    [HAL_TIMER_SPARE] = { DSPIC30_T3CON,
-                          DSPIC30_PR3,
-                          DSPIC30_TMR3,
-                          DSPIC30_IFS0,
-                          DSPIC30_IEC0,
-                          DSPIC30_IRQ0_T3,
-                          DSPIC30_IPC_T3,
-                          DSPIC30_SHIFT_T3 },
+static const timer_registers timer_map[EPUCK_TIMER_COUNT] = {
+    [EPUCK_TIMER_AGENDA] = { DSPIC30_T2CON,
+                             DSPIC30_PR2,
+                             DSPIC30_TMR2,
+                             DSPIC30_IFS0,
+                             DSPIC30_IEC0,
+                             DSPIC30_IRQ0_T2,
+                             DSPIC30_IPC_T2,
+                             DSPIC30_SHIFT_T2 },
+    [EPUCK_TIMER_MOTOR_LEFT] = { DSPIC30_T5CON,
+                                 DSPIC30_PR5,
+                                 DSPIC30_TMR5,
+                                 DSPIC30_IFS1,
+                                 DSPIC30_IEC1,
+                                 DSPIC30_IRQ1_T5,
+                                 DSPIC30_IPC_T5,
+                                 DSPIC30_SHIFT_T5 },
+    [EPUCK_TIMER_MOTOR_RIGHT] = { DSPIC30_T4CON,
+                                  DSPIC30_PR4,
+                                  DSPIC30_TMR4,
+                                  DSPIC30_IFS1,
+                                  DSPIC30_IEC1,
+                                  DSPIC30_IRQ1_T4,
+                                  DSPIC30_IPC_T4,
+                                  DSPIC30_SHIFT_T4 },
+    [EPUCK_TIMER_SPARE] = { DSPIC30_T3CON,
+                            DSPIC30_PR3,
+                            DSPIC30_TMR3,
+                            DSPIC30_IFS0,
+                            DSPIC30_IEC0,
+                            DSPIC30_IRQ0_T3,
+                            DSPIC30_IPC_T3,
+                            DSPIC30_SHIFT_T3 },
 };
 
 // Prescale of each TCKPS code.
-static const uint16_t prescales[PRESCALER_COUNT] = { 1, 8, 64, 256 };
+static const uint16_t prescales[PRESCALER_COUNT] = { 1, 8, 64, LARGEST_PRESCALE };
 
 bool dspic30_timer_period(uint32_t period_microseconds,
                           uint16_t *period_register,
@@ -65,8 +73,8 @@ bool dspic30_timer_period(uint32_t period_microseconds,
 {
     uint16_t code;
 
-    if (period_microseconds < DSPIC30_TIMER_MIN_PERIOD_US ||
-        period_microseconds > DSPIC30_TIMER_MAX_PERIOD_US)
+    if (period_microseconds < EPUCK_TIMER_MIN_PERIOD_US ||
+        period_microseconds > EPUCK_TIMER_MAX_PERIOD_US)
         return false;
     for (code = 0; code < PRESCALER_COUNT; code++) {
         // Timer counts in the period, rounded to the nearest.
@@ -87,7 +95,7 @@ void dspic30_timers_init(hal_board *board)
 {
     uint16_t i;
 
-    for (i = 0; i < HAL_TIMER_COUNT; i++) {
+    for (i = 0; i < EPUCK_TIMER_COUNT; i++) {
         const timer_registers *timer = &timer_map[i];
         board->timers[i].callback = 0;
         board->timers[i].context = 0;
@@ -98,21 +106,21 @@ void dspic30_timers_init(hal_board *board)
     }
 }
 
-bool hal_timer_start(hal_board *board,
-                     hal_timer timer,
-                     uint32_t period_microseconds,
-                     hal_callback callback,
-                     void *context)
+bool epuck_board_timer_start(hal_board *board,
+                             epuck_timer timer,
+                             uint32_t period_microseconds,
+                             epuck_callback callback,
+                             void *context)
 {
     const timer_registers *registers;
     uint16_t period_register;
     uint16_t prescaler_code;
 
-    if ((uint16_t)timer >= HAL_TIMER_COUNT ||
+    if ((uint16_t)timer >= EPUCK_TIMER_COUNT ||
         !dspic30_timer_period(period_microseconds, &period_register, &prescaler_code))
         return false;
     registers = &timer_map[timer];
-    hal_timer_stop(board, timer);
+    epuck_board_timer_stop(board, timer);
     board->timers[timer].callback = callback;
     board->timers[timer].context = context;
     dspic30_write(registers->count, 0);
@@ -123,11 +131,11 @@ bool hal_timer_start(hal_board *board,
     return true;
 }
 
-void hal_timer_stop(hal_board *board, hal_timer timer)
+void epuck_board_timer_stop(hal_board *board, epuck_timer timer)
 {
     const timer_registers *registers;
 
-    if ((uint16_t)timer >= HAL_TIMER_COUNT)
+    if ((uint16_t)timer >= EPUCK_TIMER_COUNT)
         return;
     registers = &timer_map[timer];
     dspic30_write(registers->control, 0);
@@ -136,7 +144,7 @@ void hal_timer_stop(hal_board *board, hal_timer timer)
     board->timers[timer].callback = 0;
 }
 
-void dspic30_on_timer(hal_board *board, hal_timer timer)
+void dspic30_on_timer(hal_board *board, epuck_timer timer)
 {
     const timer_registers *registers = &timer_map[timer];
     dspic30_timer_slot *slot = &board->timers[timer];

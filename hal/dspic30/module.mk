@@ -6,18 +6,20 @@
 # links two programs with XC16 and combines them with the host tool
 # epuck-image (tools/flash), in build/dspic30/:
 #
-#   epuck-aseba-application.elf/.hex/.map  the VM, natives, firmware, this HAL
-#       and the e-puck drivers, linked with linker/epuck-app.gld
-#   epuck-aseba-bootloader.elf/.hex/.map   bootloader/ (bootloader_main_dspic30.c)
-#       with the HAL's clock, pins, UART and flash, linked with
-#       linker/epuck-bootloader.gld
+#   epuck-aseba-application.elf/.hex/.map  the VM, natives, firmware, the
+#       e-puck's devices and this port, from dspic30_application_main.c,
+#       linked with linker/epuck-app.gld
+#   epuck-aseba-bootloader.elf/.hex/.map   the bootloader core (bootloader/)
+#       from dspic30_bootloader_main.c, with the port's clock, pins, UART and
+#       flash, linked with linker/epuck-bootloader.gld
 #   epuck-aseba.hex          the application and its descriptor: what
 #                            `asebacmd whex` or the console's flash sends
 #   epuck-aseba-factory.hex  bootloader + application + descriptor: the first
 #                            installation (factory Tiny Bootloader, programmer)
 #
-# `make dspic30-check` compiles every hal/dspic30 file and the bootloader's
-# *_dspic30.c with avr-gcc (16-bit int) against the simulated register
+# Every file is compiled with the target's one configuration header,
+# dspic30_config.h. `make dspic30-check` compiles every hal/dspic30 file but
+# the DSP kernel with avr-gcc (16-bit int) against the simulated register
 # header, and runs as part of `make cross-check`.
 
 # XC16's bin folder: the newest installed version unless given.
@@ -26,26 +28,30 @@ XC16_GCC := $(XC16_DIR)/xc16-gcc
 XC16_BIN2HEX := $(XC16_DIR)/xc16-bin2hex
 
 DSPIC30_OUT := $(BUILD)/dspic30
-# native_functions/nat_dsp_dspic30.c, the DSP-engine inner loop of the DSP
-# natives, replaces the portable nat_dsp_kernel.c (same function).
-DSPIC30_APPLICATION_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c bootloader/%_dspic30.c, \
+DSPIC30_TARGET_CONFIG := '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"'
+# The port's DSP-engine kernel (dspic30_dsp_kernel.c) replaces the portable
+# native_functions/nat_dsp_kernel.c (same function); each image has its own
+# entry point.
+DSPIC30_APPLICATION_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c \
+                                            hal/dspic30/dspic30_bootloader_main.c, \
                      $(sort $(wildcard vm/*.c native_functions/*.c firmware/*.c hal/dspic30/*.c \
-                                       drivers/epuck/*.c) bootloader/bytecode_store.c))
-# The bootloader image: what bootloader_main_dspic30.c reaches. Unused
+                                       drivers/epuck/*.c) bootloader/bytecode_store.c \
+                            hal/hal_link_rings.c))
+# The bootloader image: what dspic30_bootloader_main.c reaches. Unused
 # functions are dropped at link time (-ffunction-sections, --gc-sections).
-DSPIC30_BOOTLOADER_SOURCES := $(sort $(wildcard bootloader/*.c) \
+DSPIC30_BOOTLOADER_SOURCES := $(sort $(wildcard bootloader/*.c) hal/dspic30/dspic30_bootloader_main.c \
                                 hal/dspic30/dspic30_clock.c hal/dspic30/dspic30_gpio.c \
                                 hal/dspic30/dspic30_uart.c hal/dspic30/dspic30_nvm.c \
-                                drivers/epuck/epuck_selector.c vm/node_description.c)
+                                hal/hal_link_rings.c drivers/epuck/epuck_selector.c \
+                                vm/node_description.c)
 DSPIC30_APPLICATION_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_APPLICATION_SOURCES))
 DSPIC30_BOOTLOADER_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_BOOTLOADER_SOURCES))
 DSPIC30_APPLICATION_SCRIPT := linker/epuck-app.gld
 DSPIC30_BOOTLOADER_SCRIPT := linker/epuck-bootloader.gld
-# -mcpu names the part; -omf=elf the object format bin2hex reads; the
-# firmware's sizes reach the VM through VM_TARGET_CONFIG; one section per
-# function lets the bootloader's link keep only what it calls.
+# -mcpu names the part; -omf=elf the object format bin2hex reads; one section
+# per function lets the bootloader's link keep only what it calls.
 DSPIC30_CFLAGS := -mcpu=30F6014A -omf=elf -std=gnu99 -Os -Wall -Wextra -I. -Ivm -Inative_functions \
-                  -ffunction-sections '-DVM_TARGET_CONFIG="firmware/epuck_config.h"'
+                  -ffunction-sections $(DSPIC30_TARGET_CONFIG)
 DSPIC30_LDFLAGS = -mcpu=30F6014A -omf=elf \
                   -Wl,--script=$(1),-Map=$(2:.elf=.map),--report-mem$(3)
 # The bootloader's code is above PC 0xFFFF and has no room for a handle
@@ -91,18 +97,20 @@ $(DSPIC30_OUT)/epuck-aseba.hex $(DSPIC30_OUT)/epuck-aseba-factory.hex &: \
 
 -include $(DSPIC30_APPLICATION_OBJECTS:.o=.d) $(DSPIC30_BOOTLOADER_OBJECTS:.o=.d)
 
-# Every hal/dspic30 file and the bootloader's chip program compiled where int
-# is 16 bits, warnings as errors.
-DSPIC30_CHECK_SOURCES := $(wildcard hal/dspic30/*.c bootloader/*_dspic30.c)
+# Every hal/dspic30 file compiled where int is 16 bits, warnings as errors;
+# the DSP kernel needs XC16's DSP builtins (its host test runs it against a
+# model of them).
+DSPIC30_CHECK_SOURCES := $(filter-out hal/dspic30/dspic30_dsp_kernel.c,$(wildcard hal/dspic30/*.c)) \
+                         hal/hal_link_rings.c
 DSPIC30_CHECK_FLAGS := -std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef \
                        -Wpointer-arith -mmcu=atmega1284p -I. -Ivm -Inative_functions \
-                       -DDSPIC30_SIMULATED_REGISTERS
+                       -DDSPIC30_SIMULATED_REGISTERS $(DSPIC30_TARGET_CONFIG)
 dspic30-check: | $(DEPS_STAMP)
 	@mkdir -p $(BUILD)/cross-dspic30
 	@for source in $(DSPIC30_CHECK_SOURCES); do \
 	    avr-gcc $(DSPIC30_CHECK_FLAGS) -c $$source \
 	        -o $(BUILD)/cross-dspic30/$$(basename $${source%.c}).o || exit 1; \
 	done
-	@echo "== hal/dspic30, bootloader/*_dspic30.c: $(words $(DSPIC30_CHECK_SOURCES)) files build with avr-gcc against the simulated registers"
+	@echo "== hal/dspic30 and its rings: $(words $(DSPIC30_CHECK_SOURCES)) files build with avr-gcc against the simulated registers"
 
 cross-check: dspic30-check

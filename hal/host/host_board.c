@@ -19,8 +19,8 @@ void host_board_init(hal_board *board,
     board->link_context = link_context;
     board->world = host_world_flat();
     board->power_cut_at = HOST_NO_POWER_CUT;
-    for (i = 0; i < HAL_EEPROM_WORDS; i++)
-        board->eeprom[i] = HAL_EEPROM_ERASED;
+    for (i = 0; i < HOST_EEPROM_WORDS; i++)
+        board->eeprom[i] = HOST_EEPROM_ERASED;
     for (i = 0; i < HOST_FLASH_WORDS; i++)
         board->flash[i] = HAL_FLASH_ERASED;
 }
@@ -30,8 +30,8 @@ void host_board_set_world(hal_board *board, const host_world *world)
     uint16_t pin;
 
     board->world = world;
-    for (pin = HAL_PIN_FIRST_INPUT; pin < HAL_PIN_COUNT; pin++)
-        board->last_input[pin] = world->pin_read(world->context, (hal_pin)pin, board->cycles);
+    for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
+        board->last_input[pin] = world->pin_read(world->context, (epuck_pin)pin, board->cycles);
 }
 
 uint64_t host_board_cycles(const hal_board *board)
@@ -39,7 +39,7 @@ uint64_t host_board_cycles(const hal_board *board)
     return board->cycles;
 }
 
-// The earliest due event at or before `until`: -1 none, HAL_TIMER_COUNT the
+// The earliest due event at or before `until`: -1 none, EPUCK_TIMER_COUNT the
 // ADC scan, else a timer.
 static int16_t next_event(const hal_board *board, uint64_t until, uint64_t *due)
 {
@@ -47,10 +47,10 @@ static int16_t next_event(const hal_board *board, uint64_t until, uint64_t *due)
     int16_t i;
 
     if (board->adc_scan_mask != 0 && board->adc_next_due <= until) {
-        chosen = HAL_TIMER_COUNT;
+        chosen = EPUCK_TIMER_COUNT;
         *due = board->adc_next_due;
     }
-    for (i = 0; i < HAL_TIMER_COUNT; i++) {
+    for (i = 0; i < EPUCK_TIMER_COUNT; i++) {
         const host_periodic *timer = &board->timers[i];
         if (timer->running && timer->next_due <= until && (chosen < 0 || timer->next_due < *due)) {
             chosen = i;
@@ -71,7 +71,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
 
     while ((event = next_event(board, until, &due)) >= 0) {
         board->cycles = due;
-        if (event == HAL_TIMER_COUNT) {
+        if (event == EPUCK_TIMER_COUNT) {
             host_board_run_adc_scan(board);
         } else {
             host_periodic *timer = &board->timers[event];
@@ -111,7 +111,7 @@ void hal_delay_microseconds(hal_board *board, uint16_t microseconds)
 
 uint16_t host_board_link_room(const hal_board *board)
 {
-    return (uint16_t)(HOST_LINK_RECEIVE_CAPACITY - board->receive_count);
+    return (uint16_t)(HAL_LINK_RECEIVE_CAPACITY - board->receive_count);
 }
 
 bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t count)
@@ -122,7 +122,7 @@ bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t co
         return false;
     for (i = 0; i < count; i++) {
         uint16_t at =
-          (uint16_t)((board->receive_start + board->receive_count) % HOST_LINK_RECEIVE_CAPACITY);
+          (uint16_t)((board->receive_start + board->receive_count) % HAL_LINK_RECEIVE_CAPACITY);
         board->receive[at] = bytes[i];
         board->receive_count++;
     }
@@ -135,29 +135,37 @@ uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
 
     while (count < capacity && board->receive_count != 0) {
         bytes[count++] = board->receive[board->receive_start];
-        board->receive_start = (uint16_t)((board->receive_start + 1) % HOST_LINK_RECEIVE_CAPACITY);
+        board->receive_start = (uint16_t)((board->receive_start + 1) % HAL_LINK_RECEIVE_CAPACITY);
         board->receive_count--;
     }
     return count;
 }
 
-void hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)
+uint16_t hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)
 {
+    // An infinitely fast UART: the bytes leave at once.
     if (board->link_output)
         board->link_output(board->link_context, bytes, count);
+    return count;
 }
 
-bool hal_timer_start(hal_board *board,
-                     hal_timer timer,
-                     uint32_t period_microseconds,
-                     hal_callback callback,
-                     void *context)
+uint16_t hal_link_send_room(hal_board *board)
+{
+    (void)board;
+    return HAL_LINK_TRANSMIT_CAPACITY;
+}
+
+bool epuck_board_timer_start(hal_board *board,
+                             epuck_timer timer,
+                             uint32_t period_microseconds,
+                             epuck_callback callback,
+                             void *context)
 {
     host_periodic *slot;
     uint64_t period;
 
-    if ((uint16_t)timer >= HAL_TIMER_COUNT || period_microseconds < HAL_TIMER_MIN_PERIOD_US ||
-        period_microseconds > HAL_TIMER_MAX_PERIOD_US)
+    if ((uint16_t)timer >= EPUCK_TIMER_COUNT || period_microseconds < EPUCK_TIMER_MIN_PERIOD_US ||
+        period_microseconds > EPUCK_TIMER_MAX_PERIOD_US)
         return false;
     // The period in cycles, rounded to the nearest.
     period =
@@ -172,9 +180,9 @@ bool hal_timer_start(hal_board *board,
     return true;
 }
 
-void hal_timer_stop(hal_board *board, hal_timer timer)
+void epuck_board_timer_stop(hal_board *board, epuck_timer timer)
 {
-    if ((uint16_t)timer < HAL_TIMER_COUNT)
+    if ((uint16_t)timer < EPUCK_TIMER_COUNT)
         board->timers[timer].running = false;
 }
 
@@ -207,6 +215,7 @@ void host_board_reset(hal_board *board)
     memset(board->outputs, 0, sizeof board->outputs);
     memset(board->edge_callback, 0, sizeof board->edge_callback);
     memset(board->edge_context, 0, sizeof board->edge_context);
+    board->camera_bytes = 0;
     board->receive_start = 0;
     board->receive_count = 0;
     board->critical_depth = 0;

@@ -1,4 +1,5 @@
-// A simulated e-puck board on a PC: the hal.h functions over plain memory.
+// A simulated e-puck board on a PC: hal.h and the e-puck's board
+// (drivers/epuck/epuck_board.h) over plain memory.
 //
 // The host program owns the board and drives it: it moves the board's clock
 // forward (which fires the timers and ADC scans that fall due, in time
@@ -8,7 +9,7 @@
 // can be saved to and loaded from a file, and can lose power at a chosen
 // operation. Nothing here touches the operating system except the two file
 // functions, so tests and the simulator can wire boards together as they
-// like.
+// like. The sizes are the host target's (host_config.h).
 
 #ifndef HOST_BOARD_H
 #define HOST_BOARD_H
@@ -16,21 +17,19 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "drivers/epuck/epuck_board.h"
 #include "hal/hal.h"
 #include "host_world.h"
 
-// Bytes the link can hold before the firmware reads them: two whole frames,
-// as a UART ring large enough for a full frame (protocol.md §2) would.
-#define HOST_LINK_RECEIVE_CAPACITY 1044
-
 // Program-flash words modelled: every instruction below HAL_FLASH_END.
-#define HOST_FLASH_WORDS (HAL_FLASH_END / 2u)
+#define HOST_FLASH_WORDS   (HAL_FLASH_END / HAL_FLASH_WORD_SPAN)
+#define HOST_EEPROM_ERASED 0xFFFFu
 
 // No fault injection planned.
 #define HOST_NO_POWER_CUT (-1L)
 
 typedef struct host_periodic {
-    hal_callback callback;
+    epuck_callback callback;
     void *context;
     uint64_t period;   // cycles
     uint64_t next_due; // cycle of the next call
@@ -40,30 +39,35 @@ typedef struct host_periodic {
 struct hal_board {
     uint64_t cycles; // simulated time since start
 
-    uint8_t receive[HOST_LINK_RECEIVE_CAPACITY];
+    uint8_t receive[HAL_LINK_RECEIVE_CAPACITY];
     uint16_t receive_start;
     uint16_t receive_count;
     // Where the firmware's bytes go; called from hal_link_send.
     void (*link_output)(void *context, const uint8_t *bytes, uint16_t count);
     void *link_context;
 
-    host_periodic timers[HAL_TIMER_COUNT];
+    host_periodic timers[EPUCK_TIMER_COUNT];
     // The ADC scan: a periodic event whose callback gets the values.
-    hal_adc_scan_callback adc_scan_callback;
+    epuck_adc_scan_callback adc_scan_callback;
     void *adc_scan_context;
     uint16_t adc_scan_mask;
     uint64_t adc_next_due;
 
     const host_world *world;
-    bool outputs[HAL_PIN_COUNT];
-    bool last_input[HAL_PIN_COUNT]; // for edge detection
-    hal_callback edge_callback[HAL_PIN_COUNT];
-    void *edge_context[HAL_PIN_COUNT];
+    bool outputs[EPUCK_PIN_COUNT];
+    bool last_input[EPUCK_PIN_COUNT]; // for edge detection
+    epuck_callback edge_callback[EPUCK_PIN_COUNT];
+    void *edge_context[EPUCK_PIN_COUNT];
+    // The camera read in progress (epuck_board_camera_start): it completes
+    // at its first step.
+    uint8_t *camera_bytes;
+    uint16_t camera_row;
+    uint16_t camera_count;
 
     uint16_t critical_depth;
     bool reset_requested;
 
-    uint16_t eeprom[HAL_EEPROM_WORDS];
+    uint16_t eeprom[HOST_EEPROM_WORDS];
     uint32_t flash[HOST_FLASH_WORDS];
     // Erase/write operations done so far, and the one that loses power
     // (HOST_NO_POWER_CUT for none); after the cut every operation fails.
@@ -88,7 +92,7 @@ void host_board_set_time(hal_board *board, uint32_t milliseconds);
 
 // Moves the clock forward by `cycles` processor cycles, calling every timer
 // and ADC-scan callback that falls due at its time, earliest first (at equal
-// times: the ADC scan, then the timers in hal_timer order).
+// times: the ADC scan, then the timers in epuck_timer order).
 void host_board_advance(hal_board *board, uint64_t cycles);
 
 // Processor cycles since start (HOST_CYCLES_PER_SECOND a second).
@@ -103,7 +107,7 @@ bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t co
 
 // The world says input `pin` may have changed: a watched falling edge calls
 // its callback.
-void host_board_input_changed(hal_board *board, hal_pin pin);
+void host_board_input_changed(hal_board *board, epuck_pin pin);
 
 // Whether the firmware asked for a reset since the last call (then clears it).
 bool host_board_take_reset(hal_board *board);
@@ -119,6 +123,13 @@ void host_board_cut_power_at(hal_board *board, uint32_t count);
 
 // Restores power after a cut; memory keeps what the cut left.
 void host_board_restore_power(hal_board *board);
+
+// The simulated data EEPROM (HOST_EEPROM_WORDS words, NOR rules like the
+// flash): the word at `index` (HOST_EEPROM_ERASED out of range), erasing one
+// word, programming one erased word; false out of range or without power.
+uint16_t host_board_eeprom_read(const hal_board *board, uint16_t index);
+bool host_board_eeprom_erase_word(hal_board *board, uint16_t index);
+bool host_board_eeprom_write_word(hal_board *board, uint16_t index, uint16_t value);
 
 // Saves EEPROM and flash to `path`; returns false on an I/O error.
 bool host_board_save_memory(const hal_board *board, const char *path);

@@ -1,14 +1,14 @@
 // The host board's data EEPROM and program flash: NOR semantics (an erase
-// sets every bit, a write can only clear bits), the chip's sizes and row
-// layout, power cuts at a chosen operation, and saving to a file.
+// sets every bit, a write can only clear bits), the e-puck's sizes and rows
+// (the flash geometry of host_config.h), power cuts at a chosen operation,
+// and saving to a file.
 
 #include "host_board.h"
 
 #include <stdio.h>
 
-#define INSTRUCTION_MASK  0xFFFFFFul
-#define WORD_ADDRESS_STEP 2u // PC units per instruction
-#define INSTRUCTION_BYTES 3u // in the memory file, little-endian
+#define INSTRUCTION_BYTES (HAL_FLASH_WORD_BITS / 8u) // in the memory file, little-endian
+#define ROW_WORDS         DSPIC30_FLASH_ROW_INSTRUCTIONS
 #define EEPROM_WORD_BYTES 2u
 #define BITS_PER_BYTE     8u
 #define BYTE_MASK         0xFFu
@@ -41,81 +41,95 @@ void host_board_restore_power(hal_board *board)
     board->power_cut_at = HOST_NO_POWER_CUT;
 }
 
-uint16_t hal_eeprom_read(hal_board *board, uint16_t index)
+uint16_t host_board_eeprom_read(const hal_board *board, uint16_t index)
 {
-    if (index >= HAL_EEPROM_WORDS)
-        return HAL_EEPROM_ERASED;
+    if (index >= HOST_EEPROM_WORDS)
+        return HOST_EEPROM_ERASED;
     return board->eeprom[index];
 }
 
-bool hal_eeprom_erase_word(hal_board *board, uint16_t index)
+bool host_board_eeprom_erase_word(hal_board *board, uint16_t index)
 {
     bool cut;
-    if (index >= HAL_EEPROM_WORDS || !start_operation(board, &cut))
+    if (index >= HOST_EEPROM_WORDS || !start_operation(board, &cut))
         return false;
-    board->eeprom[index] = HAL_EEPROM_ERASED;
+    board->eeprom[index] = HOST_EEPROM_ERASED;
     return true;
 }
 
-bool hal_eeprom_write_word(hal_board *board, uint16_t index, uint16_t value)
+bool host_board_eeprom_write_word(hal_board *board, uint16_t index, uint16_t value)
 {
     bool cut;
-    if (index >= HAL_EEPROM_WORDS || !start_operation(board, &cut))
+    if (index >= HOST_EEPROM_WORDS || !start_operation(board, &cut))
         return false;
     board->eeprom[index] &= value;
     return true;
 }
 
-static bool valid_row(uint32_t row_address)
-{
-    return row_address < HAL_FLASH_END && row_address % HAL_FLASH_ROW_SPAN == 0;
-}
-
 uint32_t hal_flash_read(hal_board *board, uint32_t address)
 {
-    if (address >= HAL_FLASH_END || address % WORD_ADDRESS_STEP != 0)
+    if (address >= HAL_FLASH_END || address % HAL_FLASH_WORD_SPAN != 0)
         return 0;
-    return board->flash[address / WORD_ADDRESS_STEP];
+    return board->flash[address / HAL_FLASH_WORD_SPAN];
 }
 
-// Starts a row operation and says how many instructions of the row it
-// reaches: all of them, half when the power is cut during it, none when it
-// fails before starting (*ok false in the last two cases).
-static uint16_t row_reach(hal_board *board, uint32_t row_address, bool *ok)
+uint32_t hal_flash_unit(hal_board *board, uint32_t address, uint32_t *unit_start)
+{
+    (void)board;
+    if (address >= HAL_FLASH_END)
+        return 0;
+    *unit_start = address - address % DSPIC30_FLASH_ROW_SPAN;
+    return DSPIC30_FLASH_ROW_SPAN;
+}
+
+// Starts a row operation and says how many words of the row it reaches: all
+// of them, half when the power is cut during it, none when it fails before
+// starting (*ok false in the last two cases).
+static uint16_t row_reach(hal_board *board, bool *ok)
 {
     bool cut;
 
-    *ok = false;
-    if (!valid_row(row_address))
-        return 0;
     *ok = start_operation(board, &cut);
     if (cut)
-        return HAL_FLASH_ROW_INSTRUCTIONS / 2u;
-    return *ok ? HAL_FLASH_ROW_INSTRUCTIONS : 0;
+        return ROW_WORDS / 2u;
+    return *ok ? ROW_WORDS : 0;
 }
 
-bool hal_flash_erase_row(hal_board *board, uint32_t row_address)
+bool hal_flash_erase(hal_board *board, uint32_t unit_start)
 {
-    uint32_t first = row_address / WORD_ADDRESS_STEP;
+    uint32_t first = unit_start / HAL_FLASH_WORD_SPAN;
     bool ok;
-    uint16_t count = row_reach(board, row_address, &ok);
+    uint16_t count;
     uint16_t i;
 
+    if (unit_start >= HAL_FLASH_END || unit_start % DSPIC30_FLASH_ROW_SPAN != 0)
+        return false;
+    count = row_reach(board, &ok);
     for (i = 0; i < count; i++)
         board->flash[first + i] = HAL_FLASH_ERASED;
     return ok;
 }
 
-bool hal_flash_write_row(hal_board *board, uint32_t row_address, const uint32_t *instructions)
+bool hal_flash_program(hal_board *board, uint32_t address, const uint32_t *words, uint16_t count)
 {
-    uint32_t first = row_address / WORD_ADDRESS_STEP;
-    bool ok;
-    uint16_t count = row_reach(board, row_address, &ok);
-    uint16_t i;
+    uint16_t done;
 
-    for (i = 0; i < count; i++)
-        board->flash[first + i] &= instructions[i] & INSTRUCTION_MASK;
-    return ok;
+    // As on the chip: whole rows, one operation each.
+    if (address >= HAL_FLASH_END || address % DSPIC30_FLASH_ROW_SPAN != 0 ||
+        count % HAL_FLASH_PROGRAM_WORDS != 0 ||
+        (uint32_t)count * HAL_FLASH_WORD_SPAN > HAL_FLASH_END - address)
+        return false;
+    for (done = 0; done < count; done = (uint16_t)(done + ROW_WORDS)) {
+        uint32_t first = address / HAL_FLASH_WORD_SPAN + done;
+        bool ok;
+        uint16_t reach = row_reach(board, &ok);
+        uint16_t i;
+        for (i = 0; i < reach; i++)
+            board->flash[first + i] &= words[done + i] & HAL_FLASH_ERASED;
+        if (!ok)
+            return false;
+    }
+    return true;
 }
 
 // The file: every EEPROM word (2 bytes), then every flash instruction (3
@@ -127,7 +141,7 @@ bool host_board_save_memory(const hal_board *board, const char *path)
     uint16_t b;
     bool ok = file != NULL;
 
-    for (i = 0; ok && i < HAL_EEPROM_WORDS; i++) {
+    for (i = 0; ok && i < HOST_EEPROM_WORDS; i++) {
         for (b = 0; b < EEPROM_WORD_BYTES; b++)
             ok = fputc((int)((board->eeprom[i] >> (BITS_PER_BYTE * b)) & BYTE_MASK), file) != EOF;
     }
@@ -143,7 +157,7 @@ bool host_board_save_memory(const hal_board *board, const char *path)
 bool host_board_load_memory(hal_board *board, const char *path)
 {
     static const long expected =
-      (long)HAL_EEPROM_WORDS * EEPROM_WORD_BYTES + (long)HOST_FLASH_WORDS * INSTRUCTION_BYTES;
+      (long)HOST_EEPROM_WORDS * EEPROM_WORD_BYTES + (long)HOST_FLASH_WORDS * INSTRUCTION_BYTES;
     FILE *file = fopen(path, "rb");
     uint32_t i;
     uint16_t b;
@@ -154,7 +168,7 @@ bool host_board_load_memory(hal_board *board, const char *path)
         fclose(file);
         return false;
     }
-    for (i = 0; i < HAL_EEPROM_WORDS; i++) {
+    for (i = 0; i < HOST_EEPROM_WORDS; i++) {
         uint16_t word = 0;
         for (b = 0; b < EEPROM_WORD_BYTES; b++)
             word = (uint16_t)(word | ((uint16_t)(fgetc(file) & BYTE_MASK) << (BITS_PER_BYTE * b)));

@@ -16,7 +16,7 @@ void host_robot_init(host_robot *robot,
 void host_robot_start_application(host_robot *robot)
 {
     robot->mode = HOST_ROBOT_IN_APPLICATION;
-    epuck_firmware_init(&robot->firmware, &robot->board, robot->node_id);
+    epuck_firmware_init(&robot->firmware, &robot->board, &robot->devices, robot->node_id);
 }
 
 void host_robot_reset(host_robot *robot)

@@ -15,6 +15,7 @@
 #include <stdint.h>
 
 #include "bootloader/bootloader.h"
+#include "drivers/epuck/epuck_devices.h"
 #include "firmware/epuck_firmware.h"
 #include "host_board.h"
 
@@ -30,6 +31,7 @@ typedef struct host_robot {
     uint32_t resets; // since power-on
     bootloader loader;
     epuck_firmware firmware;
+    epuck_robot devices; // the e-puck's, under the firmware
 } host_robot;
 
 // Prepares the board (flat world, link output to `link_output`, memories

@@ -6,27 +6,27 @@ static uint16_t flat_adc_read(void *context, uint8_t channel, uint64_t cycle)
 {
     (void)context;
     (void)cycle;
-    if (channel >= HAL_ADC_MICROPHONE_0 && channel < HAL_ADC_ACCELEROMETER_X)
+    if (channel >= EPUCK_ADC_MICROPHONE_0 && channel < EPUCK_ADC_ACCELEROMETER_X)
         return HOST_FLAT_MICROPHONE;
-    if (channel == HAL_ADC_ACCELEROMETER_X || channel == HAL_ADC_ACCELEROMETER_Y)
+    if (channel == EPUCK_ADC_ACCELEROMETER_X || channel == EPUCK_ADC_ACCELEROMETER_Y)
         return HOST_FLAT_ACCELERATION_XY;
-    if (channel == HAL_ADC_ACCELEROMETER_Z)
+    if (channel == EPUCK_ADC_ACCELEROMETER_Z)
         return HOST_FLAT_ACCELERATION_Z;
-    if (channel >= HAL_ADC_PROXIMITY_0 && channel < HAL_ADC_CHANNEL_COUNT)
+    if (channel >= EPUCK_ADC_PROXIMITY_0 && channel < EPUCK_ADC_CHANNEL_COUNT)
         return HOST_FLAT_PROXIMITY;
     return HOST_FLAT_OTHER_INPUT;
 }
 
-static bool flat_pin_read(void *context, hal_pin pin, uint64_t cycle)
+static bool flat_pin_read(void *context, epuck_pin pin, uint64_t cycle)
 {
     (void)context;
     (void)cycle;
     // The battery-low line and the remote receiver idle high; the selector
     // reads 0 and the camera is silent.
-    return pin == HAL_PIN_BATTERY_LOW || pin == HAL_PIN_REMOTE;
+    return pin == EPUCK_PIN_BATTERY_LOW || pin == EPUCK_PIN_REMOTE;
 }
 
-static void flat_pin_written(void *context, hal_pin pin, bool high, uint64_t cycle)
+static void flat_pin_written(void *context, epuck_pin pin, bool high, uint64_t cycle)
 {
     (void)context;
     (void)pin;

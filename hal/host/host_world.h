@@ -3,8 +3,8 @@
 // flat world stands for a still robot on an empty, evenly lit floor.
 //
 // Times are processor cycles since the board started (HOST_CYCLES_PER_SECOND
-// of them a second), so that the world sees exactly when the firmware
-// samples.
+// of them a second, host_config.h), so that the world sees exactly when the
+// firmware samples.
 
 #ifndef HOST_WORLD_H
 #define HOST_WORLD_H
@@ -12,9 +12,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "hal/hal.h"
-
-#define HOST_CYCLES_PER_SECOND DSPIC30_FCY_HZ
+#include "drivers/epuck/epuck_board.h"
 
 typedef struct host_world {
     // Passed back to every function.
@@ -22,9 +20,9 @@ typedef struct host_world {
     // The value 0..4095 analog input `channel` converts to at time `cycle`.
     uint16_t (*adc_read)(void *context, uint8_t channel, uint64_t cycle);
     // The level of input pin `pin` at time `cycle`.
-    bool (*pin_read)(void *context, hal_pin pin, uint64_t cycle);
+    bool (*pin_read)(void *context, epuck_pin pin, uint64_t cycle);
     // Output pin `pin` now drives `high` (LEDs, motor phases, IR pulses...).
-    void (*pin_written)(void *context, hal_pin pin, bool high, uint64_t cycle);
+    void (*pin_written)(void *context, epuck_pin pin, bool high, uint64_t cycle);
     // An I2C write/read of `count` bytes at register `reg` of the device at
     // 8-bit address `device`; false when no device acknowledges.
     bool (

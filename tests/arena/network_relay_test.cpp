@@ -41,7 +41,7 @@ struct NetworkRelay : testing::Test {
         std::vector<uint8_t> received;
         for (uint16_t i = 0; i < receiver->receive_count; i++)
             received.push_back(
-              receiver->receive[(receiver->receive_start + i) % HOST_LINK_RECEIVE_CAPACITY]);
+              receiver->receive[(receiver->receive_start + i) % HAL_LINK_RECEIVE_CAPACITY]);
         return received;
     }
 };

@@ -153,7 +153,7 @@ struct NetworkRobotPort : testing::Test {
         Bytes received;
         for (uint16_t i = 0; i < robot.receive_count; i++)
             received.push_back(
-              robot.receive[(robot.receive_start + i) % HOST_LINK_RECEIVE_CAPACITY]);
+              robot.receive[(robot.receive_start + i) % HAL_LINK_RECEIVE_CAPACITY]);
         robot.receive_start = 0;
         robot.receive_count = 0;
         return received;

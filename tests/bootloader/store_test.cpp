@@ -13,6 +13,7 @@
 
 extern "C" {
 #include "bootloader/bytecode_store.h"
+#include "firmware/epuck_description.h"
 #include "hal/host/host_board.h"
 }
 
@@ -50,7 +51,7 @@ Words program(uint16_t count, uint16_t seed)
 
 std::optional<Words> load_bytecode(hal_board *board)
 {
-    Words words(EPUCK_STORE_BYTECODE_MAX_WORDS);
+    Words words(EPUCK_BYTECODE_WORDS);
     uint16_t count = 0;
     if (!epuck_store_load_bytecode(
           board, words.data(), static_cast<uint16_t>(words.size()), &count))
@@ -104,9 +105,9 @@ TEST(Crc, MatchesTheXmodemCheckValue)
 
 TEST(Layout, FitsTheLinkerRegion)
 {
-    EXPECT_LE(EPUCK_STORE_ROWS_USED, STORE_REGION_ROWS);
+    EXPECT_LE(STORE_ROWS_USED, STORE_REGION_ROWS);
     // 1024 words plus the 8-byte header at 96 bytes a row.
-    EXPECT_EQ(EPUCK_STORE_BYTECODE_SLOT_ROWS, (1024u * 2 + 8 + 95) / 96);
+    EXPECT_EQ(STORE_BYTECODE_SLOT_BLOCKS, (1024u * 2 + 8 + 95) / 96);
     store_place place;
     epuck_store_bytecode_place(&place);
     EXPECT_GE(store_capacity(&place), 1024u);
@@ -158,7 +159,7 @@ TEST(Store, SettingsAndBytecodeAreIndependent)
     ASSERT_TRUE(save_bytecode(board.get(), program(300, 5)));
     ASSERT_TRUE(epuck_store_save_settings(board.get(), settings.data(), 4));
     ASSERT_TRUE(save_bytecode(board.get(), program(200, 6)));
-    Words loaded(EPUCK_STORE_SETTINGS_MAX_WORDS);
+    Words loaded(EPUCK_SETTINGS_WORDS);
     uint16_t count = 0;
     ASSERT_TRUE(epuck_store_load_settings(board.get(), loaded.data(), 44, &count));
     loaded.resize(count);
@@ -190,11 +191,11 @@ TEST(NodeId, ComesFromTheSettingsOrElseFromTheSelector)
 TEST(Store, ReadsSlotsWrittenFromTheDocumentedFormat)
 {
     auto board = new_board();
-    write_slot(board.get(), EPUCK_STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, 9, program(77, 3));
+    write_slot(board.get(), STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, 9, program(77, 3));
     EXPECT_EQ(load_bytecode(board.get()), program(77, 3));
     // A settings record is not a program.
     auto other = new_board();
-    write_slot(other.get(), EPUCK_STORE_BYTECODE_SLOT_0, STORE_MAGIC_SETTINGS, 9, program(7, 3));
+    write_slot(other.get(), STORE_BYTECODE_SLOT_0, STORE_MAGIC_SETTINGS, 9, program(7, 3));
     EXPECT_FALSE(load_bytecode(other.get()).has_value());
 }
 
@@ -211,16 +212,10 @@ TEST(Store, PicksTheNewestSequenceAcrossTheWrap)
                     Case{ 0x7FFF, 0x8000, 1 },
                     Case{ 0xFFFE, 0xFFFF, 1 } }) {
         auto board = new_board();
-        write_slot(board.get(),
-                   EPUCK_STORE_BYTECODE_SLOT_0,
-                   STORE_MAGIC_BYTECODE,
-                   c.sequence0,
-                   program(20, 0));
-        write_slot(board.get(),
-                   EPUCK_STORE_BYTECODE_SLOT_1,
-                   STORE_MAGIC_BYTECODE,
-                   c.sequence1,
-                   program(20, 1));
+        write_slot(
+          board.get(), STORE_BYTECODE_SLOT_0, STORE_MAGIC_BYTECODE, c.sequence0, program(20, 0));
+        write_slot(
+          board.get(), STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, c.sequence1, program(20, 1));
         EXPECT_EQ(load_bytecode(board.get()), program(20, static_cast<uint16_t>(c.newest)))
           << c.sequence0 << " " << c.sequence1;
     }
@@ -229,10 +224,8 @@ TEST(Store, PicksTheNewestSequenceAcrossTheWrap)
 TEST(Store, SavingAfterTheWrapReplacesTheOlderSlot)
 {
     auto board = new_board();
-    write_slot(
-      board.get(), EPUCK_STORE_BYTECODE_SLOT_0, STORE_MAGIC_BYTECODE, 0xFFFE, program(20, 0));
-    write_slot(
-      board.get(), EPUCK_STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, 0xFFFF, program(20, 1));
+    write_slot(board.get(), STORE_BYTECODE_SLOT_0, STORE_MAGIC_BYTECODE, 0xFFFE, program(20, 0));
+    write_slot(board.get(), STORE_BYTECODE_SLOT_1, STORE_MAGIC_BYTECODE, 0xFFFF, program(20, 1));
     for (uint16_t seed = 2; seed < 6; seed++) { // sequences 0, 1, 2, 3
         ASSERT_TRUE(save_bytecode(board.get(), program(30, seed)));
         EXPECT_EQ(load_bytecode(board.get()), program(30, seed));
@@ -246,7 +239,7 @@ TEST(Store, IgnoresASlotWithAFlippedBit)
     auto board = new_board();
     ASSERT_TRUE(save_bytecode(board.get(), program(40, 1))); // slot 0
     ASSERT_TRUE(save_bytecode(board.get(), program(40, 2))); // slot 1, newest
-    uint32_t first = EPUCK_STORE_BYTECODE_SLOT_1 / 2;
+    uint32_t first = STORE_BYTECODE_SLOT_1 / 2;
     const uint32_t stream_bytes = 8 + 40 * 2; // the padding after it is not checked
     for (uint32_t instruction = 0; instruction * 3 < stream_bytes; instruction++) {
         for (uint32_t bit = 0; bit < 24 && instruction * 3 + bit / 8 < stream_bytes; bit++) {

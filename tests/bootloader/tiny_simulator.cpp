@@ -249,8 +249,8 @@ void TinySimulator::handle_packet()
         state_ = State::off;
         return;
     }
-    if (!hal_flash_erase_row(board_.get(), address) ||
-        !hal_flash_write_row(board_.get(), address, row)) {
+    if (!hal_flash_erase(board_.get(), address) ||
+        !hal_flash_program(board_.get(), address, row, row_instructions)) {
         record_.powered_off = true;
         state_ = State::off;
         return;

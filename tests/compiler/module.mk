@@ -5,7 +5,8 @@
 COMPILER_TEST_SUPPORT := tests/compiler/test_targets.cpp tests/compiler/corpus.cpp \
                          tests/compiler/bytecode_listing.cpp
 REFERENCE_ORACLE_SOURCES := tests/compiler/reference_oracle.cpp \
-                            tests/compiler/reference_containment.cpp
+                            tests/compiler/reference_containment.cpp \
+                            tests/compiler/error_wording.cpp
 COMPILER_TEST_LIBS := aseba_compiler aseba_natives aseba_vm
 REFERENCE_COMPILER_LDLIBS := -lasebacompiler -lasebacommon
 GTEST_LDLIBS := -lgtest -lgtest_main -pthread

@@ -16,6 +16,7 @@
 
 #include "bytecode_listing.hpp"
 #include "corpus.hpp"
+#include "error_wording.hpp"
 #include "reference_oracle.hpp"
 #include "require_reference.hpp"
 #include "test_targets.hpp"
@@ -159,6 +160,10 @@ TEST(PrefixTest, EveryPrefixCompilesAsWithTheReference)
                 problem = ours.ok ? "only the reference rejects it" : "only ours rejects it";
             else if (ours.ok && ours.bytecode != theirs.bytecode)
                 problem = "different bytecode";
+            else if (!ours.ok && !theirs.error.has_position && ours.error.has_position)
+                problem = is_positioned_version(theirs.error.message, ours.error.message)
+                            ? ""
+                            : "a positioned error of another kind";
             else if (!ours.ok &&
                      (ours.error.has_position != theirs.error.has_position ||
                       (theirs.error.has_position && ours.error.position.line != theirs.error.line)))

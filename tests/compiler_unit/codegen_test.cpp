@@ -267,10 +267,12 @@ TEST(Codegen, StackCheckFormula)
     target.stack_size = 4;
     CompileResult small = compile(source, target, {});
     EXPECT_FALSE(small.ok);
-    EXPECT_FALSE(small.error.has_position);
+    // unlike the reference, the error says where and how much
+    EXPECT_TRUE(small.error.has_position);
+    EXPECT_EQ(small.error.position.line, 2u);
     EXPECT_EQ(small.error.message,
-              "Execution stack will overflow, check for any recursive "
-              "subroutine call and cut long mathematical expressions");
+              "Execution stack will overflow: this statement needs 5 words of stack, the target "
+              "has 4: cut long mathematical expressions");
     target.stack_size = 5;
     EXPECT_TRUE(compile(source, target, {}).ok);
 }

@@ -1,5 +1,7 @@
 // Every compile error of language.md §11.2 at the position the reference
-// compiler reports, from data/errors.txt (expectations are the reference's).
+// compiler reports, from data/errors.txt (expectations are the reference's,
+// or our documented rewording of them), and the errors of the locals,
+// parameters and calls of docs/language.md, from data/language_errors.txt.
 
 #include <gtest/gtest.h>
 
@@ -13,7 +15,9 @@ namespace aseba::unit
 namespace
 {
 
-const char *const DATA_FILE = "tests/compiler_unit/data/errors.txt";
+// The errors of Aseba 1.6's language, then those of docs/language.md's additions.
+const char *const DATA_FILES[] = { "tests/compiler_unit/data/errors.txt",
+                                   "tests/compiler_unit/data/language_errors.txt" };
 
 struct ErrorCase {
     std::string name;
@@ -21,9 +25,9 @@ struct ErrorCase {
     std::string expected; // "error L:C: message" or "error: message"
 };
 
-std::vector<ErrorCase> load_cases()
+std::vector<ErrorCase> load_cases(const char *path)
 {
-    std::ifstream file(DATA_FILE);
+    std::ifstream file(path);
     std::vector<ErrorCase> cases;
     std::string line;
     while (std::getline(file, line)) {
@@ -34,6 +38,16 @@ std::vector<ErrorCase> load_cases()
         } else if (!cases.empty() && cases.back().expected.empty()) {
             cases.back().source += line + "\n";
         }
+    }
+    return cases;
+}
+
+std::vector<ErrorCase> load_cases()
+{
+    std::vector<ErrorCase> cases;
+    for (const char *path : DATA_FILES) {
+        std::vector<ErrorCase> more = load_cases(path);
+        cases.insert(cases.end(), more.begin(), more.end());
     }
     return cases;
 }
@@ -67,7 +81,8 @@ INSTANTIATE_TEST_SUITE_P(Reference,
 
 TEST(CompileErrors, DataFileIsThere)
 {
-    EXPECT_GT(load_cases().size(), 50u) << "run the tests from the repository root";
+    EXPECT_GT(load_cases(DATA_FILES[0]).size(), 50u) << "run the tests from the repository root";
+    EXPECT_GT(load_cases(DATA_FILES[1]).size(), 20u);
 }
 
 } // namespace

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "unit_support.hpp"
+
 #include "tools/compiler/diagnostics.hpp"
 #include "tools/compiler/lexer.hpp"
 
@@ -82,8 +84,37 @@ TEST(Lexer, NumberErrors)
     EXPECT_EQ(lexing_error("x = 0X10").message, "Error in number, invalid base");
     EXPECT_EQ(lexing_error("x = 12ab").message, "Error in number");
     CompileError range = lexing_error("x = 0x10000");
-    EXPECT_EQ(range.message, "Integer value 65536 out of [-32768;32767] range");
+    EXPECT_EQ(range.message, "Integer value 0x10000 (65536) out of [-32768;32767] range");
     EXPECT_EQ(range.position.column, 5u);
+}
+
+// The literal as written, never a value it was clipped to (issue: the
+// message of a huge literal named 2^40).
+TEST(Lexer, OutOfRangeLiteralsAreNamedAsWritten)
+{
+    EXPECT_EQ(unit::compile_for_dummy("var x\nx = 99999999999999\n").error.message,
+              "Integer value 99999999999999 out of [-32768;32767] range");
+    EXPECT_EQ(unit::compile_for_dummy("var x\nx = -40000\n").error.message,
+              "Integer value -40000 out of [-32768;32767] range");
+    EXPECT_EQ(unit::compile_for_dummy("var x\nx = 0b11111111111111111\n").error.message,
+              "Integer value 0b11111111111111111 (131071) out of [-32768;32767] range");
+    EXPECT_EQ(unit::compile_for_dummy("var x\nfor x in 0:-40000 step -1 do\nend\n").error.message,
+              "Integer value -40000 out of [-32768;32767] range");
+}
+
+// Text that is not UTF-8 is refused where it starts, not taken as Latin-1.
+TEST(Lexer, InvalidUtf8IsRefusedWithItsPosition)
+{
+    for (const char *bad : { "\xff", "\xc3", "\xc0\x80", "\xed\xa0\x80", "\xf4\x90\x80\x80" }) {
+        CompileResult result =
+          unit::compile_for_dummy(std::string("var x\nx = 1 # \xc3\xa9 ") + bad + "\n");
+        ASSERT_FALSE(result.ok);
+        EXPECT_EQ(result.error.position.line, 2u);
+        EXPECT_EQ(result.error.position.column, 11u) << "after the 10 characters before it";
+        EXPECT_EQ(result.error.message.rfind("Invalid UTF-8 byte 0x", 0), 0u)
+          << result.error.message;
+    }
+    EXPECT_TRUE(unit::compile_for_dummy("var \xc3\xa9t\xc3\xa9 = 1\n").ok) << "valid UTF-8 letters";
 }
 
 TEST(Lexer, BadCharacters)

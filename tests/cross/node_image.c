@@ -5,10 +5,10 @@
 #include "native_functions/nat_standard.h"
 #include "vm/node.h"
 
-static const vm_native *const natives[] = {NAT_STANDARD_LIST};
-static const vm_native_table native_table = {natives, NAT_STANDARD_COUNT};
-static const node_named_variable variables[] = {{"id", 1}, {"source", 1}, {"args", 32}};
-static const node_local_event events[] = {{"tick", "a local event"}};
+static const vm_native *const natives[] = { NAT_STANDARD_LIST };
+static const vm_native_table native_table = { natives, NAT_STANDARD_COUNT };
+static const node_named_variable variables[] = { { "id", 1 }, { "source", 1 }, { "args", 32 } };
+static const node_local_event events[] = { { "tick", "a local event" } };
 static const node_description description = {
     "probe", NODE_PROTOCOL_VERSION, variables, 3, events, 1, &native_table,
 };
@@ -45,9 +45,9 @@ static volatile uint16_t word_sink;
 
 int main(void)
 {
-    vm_memory layout = {bytecode, 1024, memory, 512, stack, 32, 32};
-    node_transport transport = {send, (void *)&sink};
-    node_hooks hooks = {write_bytecode, reboot, reboot, (void *)&word_sink};
+    vm_memory layout = { bytecode, 1024, memory, 512, stack, 32, 32 };
+    node_transport transport = { send, (void *)&sink };
+    node_hooks hooks = { write_bytecode, reboot, reboot, (void *)&word_sink };
     uint32_t now = 0;
 
     node_init(&node, 1, &description, &layout, &transport, &hooks);

@@ -74,7 +74,7 @@ TEST_F(Analog, EachPairIsPulsedAndSampledAsTheFactSheetTimesIt)
     run_seconds(0.1);
     for (unsigned pair = 0; pair < 4; pair++) {
         SCOPED_TRACE("pair " + std::to_string(pair));
-        auto pulses = world.changes_of(hal_pin(HAL_PIN_IR_PULSE_0_4 + pair));
+        auto pulses = world.changes_of(epuck_pin(EPUCK_PIN_IR_PULSE_0_4 + pair));
         ASSERT_GE(pulses.size(), 10u);
         for (size_t i = 0; i + 1 < pulses.size(); i += 2) {
             ASSERT_TRUE(pulses[i].high);
@@ -86,7 +86,7 @@ TEST_F(Analog, EachPairIsPulsedAndSampledAsTheFactSheetTimesIt)
             // The sensors of the pair: an ambient conversion at switch-on
             // (before it), a lit one at switch-off, none between.
             for (unsigned sensor : { pair, pair + 4 }) {
-                uint8_t channel = uint8_t(HAL_ADC_PROXIMITY_0 + sensor);
+                uint8_t channel = uint8_t(EPUCK_ADC_PROXIMITY_0 + sensor);
                 int at_on = 0, at_off = 0, between = 0;
                 for (const Conversion &c : world.conversions) {
                     if (c.channel != channel)
@@ -109,7 +109,7 @@ TEST_F(Analog, EachPairIsPulsedAndSampledAsTheFactSheetTimesIt)
     // Only one emitter at a time.
     int lit = 0;
     for (const PinChange &change : world.changes) {
-        if (change.pin < HAL_PIN_IR_PULSE_0_4 || change.pin > HAL_PIN_IR_PULSE_3_7)
+        if (change.pin < EPUCK_PIN_IR_PULSE_0_4 || change.pin > EPUCK_PIN_IR_PULSE_3_7)
             continue;
         lit += change.high ? 1 : -1;
         EXPECT_LE(lit, 1);
@@ -167,9 +167,9 @@ TEST_F(Analog, BeforeCalibrationSetsAreReportedWithoutOffset)
 // (768 counts, §3.3); about 252 samples a second (one per scan cycle).
 TEST_F(Analog, AccelerometerTakesItsBootOffsets)
 {
-    world.channel[HAL_ADC_ACCELEROMETER_X] = 2100;
-    world.channel[HAL_ADC_ACCELEROMETER_Y] = 1990;
-    world.channel[HAL_ADC_ACCELEROMETER_Z] = 2010 + 768;
+    world.channel[EPUCK_ADC_ACCELEROMETER_X] = 2100;
+    world.channel[EPUCK_ADC_ACCELEROMETER_Y] = 1990;
+    world.channel[EPUCK_ADC_ACCELEROMETER_Z] = 2010 + 768;
     start();
     run_seconds(0.5); // 50 samples take 0.2 s
     ASSERT_TRUE(epuck_accelerometer_calibrated(&accelerometer));
@@ -179,15 +179,15 @@ TEST_F(Analog, AccelerometerTakesItsBootOffsets)
     EXPECT_EQ(acc[1], 0);
     EXPECT_EQ(acc[2], 768);
     // Tilted: half a g to the right.
-    world.channel[HAL_ADC_ACCELEROMETER_X] = 2100 + 384;
-    world.channel[HAL_ADC_ACCELEROMETER_Z] = 2010 + 665;
+    world.channel[EPUCK_ADC_ACCELEROMETER_X] = 2100 + 384;
+    world.channel[EPUCK_ADC_ACCELEROMETER_Z] = 2010 + 665;
     run_seconds(0.01);
     epuck_accelerometer_read(&accelerometer, acc.data());
     EXPECT_EQ(acc[0], 384);
     EXPECT_EQ(acc[2], 665);
     int samples = 0;
     for (const Conversion &c : world.conversions)
-        samples += c.channel == HAL_ADC_ACCELEROMETER_X;
+        samples += c.channel == EPUCK_ADC_ACCELEROMETER_X;
     EXPECT_NEAR(samples / 0.51, scan_rate / 65, 3.0);
 }
 
@@ -196,11 +196,11 @@ TEST_F(Analog, MicrophoneVolumeIsMaxMinusMin)
 {
     const std::array<int, 3> amplitude = { 300, 0, 1000 };
     world.signal = [&](uint8_t channel, uint64_t cycle) -> uint16_t {
-        if (channel < HAL_ADC_MICROPHONE_0 || channel > HAL_ADC_MICROPHONE_0 + 2)
+        if (channel < EPUCK_ADC_MICROPHONE_0 || channel > EPUCK_ADC_MICROPHONE_0 + 2)
             return 2048;
         double t = double(cycle) / FCY;
         bool high = std::fmod(t * 1000.0, 1.0) < 0.5; // 1 kHz
-        int a = amplitude[channel - HAL_ADC_MICROPHONE_0];
+        int a = amplitude[channel - EPUCK_ADC_MICROPHONE_0];
         return uint16_t(2048 + (high ? a : -a));
     };
     start();

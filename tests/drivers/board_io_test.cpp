@@ -33,17 +33,17 @@ TEST_F(BoardIo, EachLedDrivesItsOwnPinActiveHigh)
     epuck_leds leds{};
     epuck_leds_init(&leds, board.get());
     // The pins of §3.7: ring LEDs 0..7, then body and front.
-    const std::array<std::pair<uint16_t, hal_pin>, 10> wiring = { {
-      { 0, HAL_PIN_LED_0 },
-      { 1, HAL_PIN_LED_1 },
-      { 2, HAL_PIN_LED_2 },
-      { 3, HAL_PIN_LED_3 },
-      { 4, HAL_PIN_LED_4 },
-      { 5, HAL_PIN_LED_5 },
-      { 6, HAL_PIN_LED_6 },
-      { 7, HAL_PIN_LED_7 },
-      { EPUCK_LED_BODY, HAL_PIN_BODY_LED },
-      { EPUCK_LED_FRONT, HAL_PIN_FRONT_LED },
+    const std::array<std::pair<uint16_t, epuck_pin>, 10> wiring = { {
+      { 0, EPUCK_PIN_LED_0 },
+      { 1, EPUCK_PIN_LED_1 },
+      { 2, EPUCK_PIN_LED_2 },
+      { 3, EPUCK_PIN_LED_3 },
+      { 4, EPUCK_PIN_LED_4 },
+      { 5, EPUCK_PIN_LED_5 },
+      { 6, EPUCK_PIN_LED_6 },
+      { 7, EPUCK_PIN_LED_7 },
+      { EPUCK_LED_BODY, EPUCK_PIN_BODY_LED },
+      { EPUCK_LED_FRONT, EPUCK_PIN_FRONT_LED },
     } };
     for (auto [led, pin] : wiring) {
         SCOPED_TRACE("led " + std::to_string(led));
@@ -71,16 +71,16 @@ TEST_F(BoardIo, SelectorReadsItsFourBits)
 {
     for (unsigned position = 0; position < 16; position++) {
         for (unsigned bit = 0; bit < 4; bit++)
-            world.input[HAL_PIN_SELECTOR_0 + bit] = (position >> bit) & 1u;
+            world.input[EPUCK_PIN_SELECTOR_0 + bit] = (position >> bit) & 1u;
         EXPECT_EQ(epuck_selector_read(board.get()), position);
     }
 }
 
 TEST_F(BoardIo, BatteryIsOkWhileTheLowLineIsHigh)
 {
-    world.input[HAL_PIN_BATTERY_LOW] = true;
+    world.input[EPUCK_PIN_BATTERY_LOW] = true;
     EXPECT_TRUE(epuck_battery_ok(board.get()));
-    world.input[HAL_PIN_BATTERY_LOW] = false;
+    world.input[EPUCK_PIN_BATTERY_LOW] = false;
     EXPECT_FALSE(epuck_battery_ok(board.get()));
 }
 

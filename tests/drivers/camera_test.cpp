@@ -75,7 +75,7 @@ TEST_F(Camera, Po3030ReceivesTheLibraryTableForRgb565Qqvga)
     ASSERT_TRUE(epuck_camera_init(&camera, board.get()));
     EXPECT_EQ(epuck_camera_model_of(&camera), EPUCK_CAMERA_PO3030);
     // Reset: driven low, then high (§3.5).
-    auto reset = world.changes_of(HAL_PIN_CAMERA_RESET);
+    auto reset = world.changes_of(EPUCK_PIN_CAMERA_RESET);
     ASSERT_EQ(reset.size(), 2u);
     EXPECT_FALSE(reset[0].high);
     EXPECT_TRUE(reset[1].high);

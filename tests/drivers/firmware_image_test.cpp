@@ -15,6 +15,9 @@
 #include "tools/compiler/target_presets.hpp"
 
 extern "C" {
+#include "bootloader/bytecode_store.h"
+#include "drivers/epuck/epuck_devices.h"
+#include "drivers/epuck/epuck_selector.h"
 #include "firmware/epuck_firmware.h"
 }
 
@@ -40,6 +43,7 @@ onevent timer
 struct FirmwareImage : ::testing::Test {
     std::unique_ptr<hal_board> board = std::make_unique<hal_board>();
     std::unique_ptr<epuck_firmware> firmware = std::make_unique<epuck_firmware>();
+    std::unique_ptr<epuck_robot> devices = std::make_unique<epuck_robot>();
     ModelledWorld world;
     uint16_t timer_ticks_address = 0;
 
@@ -48,13 +52,13 @@ struct FirmwareImage : ::testing::Test {
         host_board_init(board.get(), nullptr, nullptr);
         world.ambient.fill(3000);
         world.channel.fill(2048);
-        world.channel[HAL_ADC_ACCELEROMETER_Z] = 2048 + 768; // upright, still
+        world.channel[EPUCK_ADC_ACCELEROMETER_Z] = 2048 + 768; // upright, still
         // Selector at 13: node id (13 & 7) + 1 = 6 (§6.1).
-        world.input[HAL_PIN_SELECTOR_0] = true;
-        world.input[HAL_PIN_SELECTOR_2] = true;
-        world.input[HAL_PIN_SELECTOR_3] = true;
+        world.input[EPUCK_PIN_SELECTOR_0] = true;
+        world.input[EPUCK_PIN_SELECTOR_2] = true;
+        world.input[EPUCK_PIN_SELECTOR_3] = true;
         world.attach(board.get());
-        epuck_firmware_init(firmware.get(), board.get(), 0);
+        boot();
 
         aseba::ProgramFile file;
         file.file_name = "image_test.aseba";
@@ -68,6 +72,13 @@ struct FirmwareImage : ::testing::Test {
                 timer_ticks_address = variable.address;
         epuck_firmware_start_program(
           firmware.get(), compiled.bytecode.data(), uint16_t(compiled.bytecode.size()));
+    }
+    // Starts the firmware as the robot's entry point does: as the node id
+    // the bootloader answered as (the stored settings' or the selector's).
+    void boot()
+    {
+        uint16_t id = epuck_store_node_id(board.get(), epuck_selector_read(board.get()));
+        epuck_firmware_init(firmware.get(), board.get(), devices.get(), id);
     }
     // Runs the main loop over `seconds` of board time, a pass per 0.5 ms.
     void run_seconds(double seconds)
@@ -83,7 +94,7 @@ struct FirmwareImage : ::testing::Test {
         return firmware->variables.words[address];
     }
     // Steps of one motor in the world's record since `from`.
-    size_t steps_since(hal_pin first, uint64_t from) const
+    size_t steps_since(epuck_pin first, uint64_t from) const
     {
         std::vector<uint64_t> cycles;
         for (const PinChange &change : world.changes)
@@ -108,7 +119,7 @@ TEST_F(FirmwareImage, ProgramDrivesTheMotorsFromTheSensors)
     EXPECT_EQ(firmware->variables.named.left_speed[0], 0);
     EXPECT_EQ(firmware->variables.named.right_speed[0], 768); // one g on Z (§3.3)
     EXPECT_EQ(firmware->variables.named.acc[2], 768);
-    EXPECT_TRUE(world.output[HAL_PIN_LED_2]);
+    EXPECT_TRUE(world.output[EPUCK_PIN_LED_2]);
 
     // An obstacle in front of sensor 0: 400 counts of reflection.
     world.reflection[0] = 400;
@@ -118,8 +129,8 @@ TEST_F(FirmwareImage, ProgramDrivesTheMotorsFromTheSensors)
     uint64_t from = host_board_cycles(board.get());
     int16_t left_before = firmware->variables.named.steps_left[0];
     run_seconds(1.0);
-    EXPECT_NEAR(double(steps_since(HAL_PIN_MOTOR_LEFT_A, from)), 400.0, 2.0);
-    EXPECT_NEAR(double(steps_since(HAL_PIN_MOTOR_RIGHT_A, from)), 768.0, 2.0);
+    EXPECT_NEAR(double(steps_since(EPUCK_PIN_MOTOR_LEFT_A, from)), 400.0, 2.0);
+    EXPECT_NEAR(double(steps_since(EPUCK_PIN_MOTOR_RIGHT_A, from)), 768.0, 2.0);
     EXPECT_NEAR(double(firmware->variables.named.steps_left[0] - left_before), 400.0, 2.0);
 }
 
@@ -152,7 +163,7 @@ TEST_F(FirmwareImage, StoredProgramRunsAfterReboot)
 
     // Reboot: a fresh firmware on the same board, whose memories persist.
     firmware = std::make_unique<epuck_firmware>();
-    epuck_firmware_init(firmware.get(), board.get(), 0);
+    boot();
     EXPECT_EQ(variable(timer_ticks_address), 0);
     run_seconds(1.0);
     EXPECT_NEAR(double(variable(timer_ticks_address)), 100.0, 2.0); // timer.period 10 ms
@@ -163,8 +174,9 @@ TEST(FirmwareBoot, NothingStoredNothingRuns)
 {
     auto board = std::make_unique<hal_board>();
     auto firmware = std::make_unique<epuck_firmware>();
+    auto devices = std::make_unique<epuck_robot>();
     host_board_init(board.get(), nullptr, nullptr);
-    epuck_firmware_init(firmware.get(), board.get(), 1);
+    epuck_firmware_init(firmware.get(), board.get(), devices.get(), 1);
     EXPECT_FALSE(vm_is_event_active(&firmware->node.vm));
     EXPECT_EQ(vm_event_address(&firmware->node.vm, 0xFFFF), 0);
 }

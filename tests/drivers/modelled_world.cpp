@@ -16,9 +16,9 @@ uint16_t adc_read(void *context, uint8_t channel, uint64_t cycle)
 {
     ModelledWorld &world = world_of(context);
     world.conversions.push_back({ channel, cycle });
-    if (channel >= HAL_ADC_PROXIMITY_0) {
-        unsigned sensor = channel - HAL_ADC_PROXIMITY_0;
-        hal_pin pulse = hal_pin(HAL_PIN_IR_PULSE_0_4 + sensor % 4);
+    if (channel >= EPUCK_ADC_PROXIMITY_0) {
+        unsigned sensor = channel - EPUCK_ADC_PROXIMITY_0;
+        epuck_pin pulse = epuck_pin(EPUCK_PIN_IR_PULSE_0_4 + sensor % 4);
         uint16_t value = world.ambient[sensor];
         if (world.output[pulse])
             value = uint16_t(value - world.reflection[sensor]);
@@ -29,7 +29,7 @@ uint16_t adc_read(void *context, uint8_t channel, uint64_t cycle)
     return world.channel[channel];
 }
 
-bool pin_read(void *context, hal_pin pin, uint64_t cycle)
+bool pin_read(void *context, epuck_pin pin, uint64_t cycle)
 {
     ModelledWorld &world = world_of(context);
     if (world.input_signal)
@@ -37,7 +37,7 @@ bool pin_read(void *context, hal_pin pin, uint64_t cycle)
     return world.input[pin];
 }
 
-void pin_written(void *context, hal_pin pin, bool high, uint64_t cycle)
+void pin_written(void *context, epuck_pin pin, bool high, uint64_t cycle)
 {
     ModelledWorld &world = world_of(context);
     world.output[pin] = high;
@@ -47,7 +47,7 @@ void pin_written(void *context, hal_pin pin, bool high, uint64_t cycle)
 bool i2c_write(void *context, uint8_t device, uint8_t reg, const uint8_t *bytes, uint16_t count)
 {
     ModelledWorld &world = world_of(context);
-    if (!world.camera_present || device != HAL_I2C_CAMERA_ADDRESS)
+    if (!world.camera_present || device != EPUCK_I2C_CAMERA_ADDRESS)
         return false;
     for (uint16_t i = 0; i < count; i++) {
         uint8_t at = uint8_t(reg + i);
@@ -60,7 +60,7 @@ bool i2c_write(void *context, uint8_t device, uint8_t reg, const uint8_t *bytes,
 bool i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count)
 {
     ModelledWorld &world = world_of(context);
-    if (!world.camera_present || device != HAL_I2C_CAMERA_ADDRESS)
+    if (!world.camera_present || device != EPUCK_I2C_CAMERA_ADDRESS)
         return false;
     for (uint16_t i = 0; i < count; i++)
         bytes[i] = world.camera_registers[uint8_t(reg + i)];
@@ -80,8 +80,8 @@ uint8_t camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 ModelledWorld::ModelledWorld()
 {
     table = { this, adc_read, pin_read, pin_written, i2c_write, i2c_read, camera_byte };
-    input[HAL_PIN_REMOTE] = true; // idles high
-    input[HAL_PIN_BATTERY_LOW] = true;
+    input[EPUCK_PIN_REMOTE] = true; // idles high
+    input[EPUCK_PIN_BATTERY_LOW] = true;
 }
 
 void ModelledWorld::attach(hal_board *board)
@@ -89,7 +89,7 @@ void ModelledWorld::attach(hal_board *board)
     host_board_set_world(board, &table);
 }
 
-std::vector<PinChange> ModelledWorld::changes_of(hal_pin pin) const
+std::vector<PinChange> ModelledWorld::changes_of(epuck_pin pin) const
 {
     std::vector<PinChange> result;
     for (const PinChange &change : changes)

@@ -24,7 +24,7 @@ constexpr double FCY = 7372800.0 * 8 / 4; // hardware §1.6
 
 // One output pin change, as the world saw it.
 struct PinChange {
-    hal_pin pin;
+    epuck_pin pin;
     bool high;
     uint64_t cycle;
 };
@@ -41,11 +41,11 @@ struct ModelledWorld {
     std::array<uint16_t, 8> ambient{};
     std::array<uint16_t, 8> reflection{};
     // Other channels (microphones, accelerometer), unless `signal` is set.
-    std::array<uint16_t, HAL_ADC_CHANNEL_COUNT> channel{};
+    std::array<uint16_t, EPUCK_ADC_CHANNEL_COUNT> channel{};
     std::function<uint16_t(uint8_t channel, uint64_t cycle)> signal;
     // Input pins, unless `input_signal` is set.
-    std::array<bool, HAL_PIN_COUNT> input{};
-    std::function<bool(hal_pin pin, uint64_t cycle)> input_signal;
+    std::array<bool, EPUCK_PIN_COUNT> input{};
+    std::function<bool(epuck_pin pin, uint64_t cycle)> input_signal;
 
     // A PO3030K: its registers, the identification in 0x00/0x01, and the
     // bytes of each row it sends.
@@ -57,7 +57,7 @@ struct ModelledWorld {
 
     std::vector<PinChange> changes;
     std::vector<Conversion> conversions;
-    std::array<bool, HAL_PIN_COUNT> output{};
+    std::array<bool, EPUCK_PIN_COUNT> output{};
 
     host_world table;
 
@@ -65,7 +65,7 @@ struct ModelledWorld {
     // Attaches this world to `board` (which must not outlive it).
     void attach(hal_board *board);
     // The changes of `pin` recorded so far.
-    std::vector<PinChange> changes_of(hal_pin pin) const;
+    std::vector<PinChange> changes_of(epuck_pin pin) const;
 };
 
 } // namespace drivers_test

@@ -50,7 +50,7 @@ struct Motors : ::testing::Test {
 
     // The states of a motor's four phase lines after each step, from the
     // world's record, with the cycle of each.
-    std::vector<std::pair<std::array<bool, 4>, uint64_t>> states(hal_pin first) const
+    std::vector<std::pair<std::array<bool, 4>, uint64_t>> states(epuck_pin first) const
     {
         std::vector<std::pair<std::array<bool, 4>, uint64_t>> result;
         std::array<bool, 4> state{};
@@ -83,7 +83,7 @@ int index_in_sequence(const std::array<bool, 4> &state)
 
 TEST_F(Motors, InitLeavesEveryCoilOff)
 {
-    for (int pin = HAL_PIN_MOTOR_LEFT_A; pin <= HAL_PIN_MOTOR_RIGHT_D; pin++)
+    for (int pin = EPUCK_PIN_MOTOR_LEFT_A; pin <= EPUCK_PIN_MOTOR_RIGHT_D; pin++)
         EXPECT_FALSE(world.output[pin]) << pin;
     EXPECT_EQ(epuck_motor_steps(&left), 0);
 }
@@ -95,7 +95,7 @@ TEST_F(Motors, ForwardStepsTheSequenceInMirroredDirections)
     epuck_motor_set_speed(&right, 200);
     run_seconds(0.1);
     for (auto [first, expected_delta] :
-         { std::pair{ HAL_PIN_MOTOR_LEFT_A, 3 }, std::pair{ HAL_PIN_MOTOR_RIGHT_A, 1 } }) {
+         { std::pair{ EPUCK_PIN_MOTOR_LEFT_A, 3 }, std::pair{ EPUCK_PIN_MOTOR_RIGHT_A, 1 } }) {
         auto seen = states(first);
         ASSERT_GE(seen.size(), 10u);
         for (size_t i = 0; i < seen.size(); i++) {
@@ -116,8 +116,8 @@ TEST_F(Motors, BackwardReversesTheSequenceAndTheCounter)
     epuck_motor_set_speed(&left, -300);
     epuck_motor_set_speed(&right, -300);
     run_seconds(0.1);
-    auto left_states = states(HAL_PIN_MOTOR_LEFT_A);
-    auto right_states = states(HAL_PIN_MOTOR_RIGHT_A);
+    auto left_states = states(EPUCK_PIN_MOTOR_LEFT_A);
+    auto right_states = states(EPUCK_PIN_MOTOR_RIGHT_A);
     ASSERT_GE(left_states.size(), 10u);
     ASSERT_GE(right_states.size(), 10u);
     for (size_t i = 1; i < left_states.size(); i++)
@@ -145,7 +145,7 @@ TEST_P(MotorRate, StepsPerSecondFollowTheCommandedSpeed)
     double seconds = std::max(1.0, 3.0 / std::abs(speed));
     epuck_motor_set_speed(&left, int16_t(speed));
     run_seconds(seconds);
-    auto seen = states(HAL_PIN_MOTOR_LEFT_A);
+    auto seen = states(EPUCK_PIN_MOTOR_LEFT_A);
     int expected = std::abs(speed);
     EXPECT_NEAR(double(seen.size()), expected * seconds, 1.0);
     EXPECT_EQ(epuck_motor_steps(&left), speed > 0 ? int(seen.size()) : -int(seen.size()));
@@ -175,7 +175,7 @@ TEST_F(Motors, StoppingSwitchesEveryCoilOffAndKeepsTheCount)
     int16_t counted = epuck_motor_steps(&left);
     EXPECT_NEAR(double(counted), 50.0, 1.0);
     epuck_motor_set_speed(&left, 0);
-    for (int pin = HAL_PIN_MOTOR_LEFT_A; pin <= HAL_PIN_MOTOR_LEFT_D; pin++)
+    for (int pin = EPUCK_PIN_MOTOR_LEFT_A; pin <= EPUCK_PIN_MOTOR_LEFT_D; pin++)
         EXPECT_FALSE(world.output[pin]) << pin;
     size_t changes = world.changes.size();
     run_seconds(0.5);

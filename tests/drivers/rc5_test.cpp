@@ -48,9 +48,9 @@ struct Rc5 : ::testing::Test {
     void SetUp() override
     {
         host_board_init(board.get(), nullptr, nullptr);
-        world.input_signal = [this](hal_pin pin, uint64_t cycle) {
-            if (pin != HAL_PIN_REMOTE)
-                return pin == HAL_PIN_BATTERY_LOW;
+        world.input_signal = [this](epuck_pin pin, uint64_t cycle) {
+            if (pin != EPUCK_PIN_REMOTE)
+                return pin == EPUCK_PIN_BATTERY_LOW;
             double t = double(cycle) / FCY;
             for (auto &[frame, start] : frames)
                 if (!receiver_level(frame, start, t))
@@ -67,7 +67,7 @@ struct Rc5 : ::testing::Test {
         uint64_t steps = uint64_t(seconds / 10e-6);
         for (uint64_t i = 0; i < steps; i++) {
             host_board_advance(board.get(), step);
-            host_board_input_changed(board.get(), HAL_PIN_REMOTE);
+            host_board_input_changed(board.get(), EPUCK_PIN_REMOTE);
         }
     }
 };
@@ -120,21 +120,21 @@ TEST_F(Rc5, DecodesFramesOneAfterAnother)
 // A short glitch is not a frame: the line is high again at the check.
 TEST_F(Rc5, IgnoresAGlitch)
 {
-    world.input_signal = [](hal_pin pin, uint64_t cycle) {
+    world.input_signal = [](epuck_pin pin, uint64_t cycle) {
         double t = double(cycle) / FCY;
-        if (pin == HAL_PIN_REMOTE)
+        if (pin == EPUCK_PIN_REMOTE)
             return !(t > 0.005 && t < 0.0055);
-        return pin == HAL_PIN_BATTERY_LOW;
+        return pin == EPUCK_PIN_BATTERY_LOW;
     };
     run_seconds(0.05);
     uint8_t toggle, address, command;
     EXPECT_FALSE(epuck_rc5_take(&rc5, &toggle, &address, &command));
     // And it listens again afterwards.
-    world.input_signal = [this](hal_pin pin, uint64_t cycle) {
+    world.input_signal = [this](epuck_pin pin, uint64_t cycle) {
         double t = double(cycle) / FCY;
-        if (pin == HAL_PIN_REMOTE)
+        if (pin == EPUCK_PIN_REMOTE)
             return receiver_level({ 1, 3, 7 }, 0.06, t);
-        return pin == HAL_PIN_BATTERY_LOW;
+        return pin == EPUCK_PIN_BATTERY_LOW;
     };
     run_seconds(0.05);
     ASSERT_TRUE(epuck_rc5_take(&rc5, &toggle, &address, &command));

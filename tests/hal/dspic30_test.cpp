@@ -41,6 +41,42 @@ uint16_t field(uint16_t value, int high, int low)
     return uint16_t((value >> low) & ((1u << (high - low + 1)) - 1));
 }
 
+// The interrupt sources the board uses: their enable bit and their
+// priority field, where the fact sheet puts them (§1.7 table, §2.6).
+struct Source {
+    const char *name;
+    uint16_t enable_register;
+    uint16_t enable_bit;
+    uint16_t priority_register;
+    int high, low; // the priority field's bits
+};
+constexpr Source int0{ "INT0", IEC0, 0x0001, IPC0, 2, 0 };
+constexpr Source t1{ "T1", IEC0, 0x0008, IPC0, 14, 12 };
+constexpr Source t2{ "T2", IEC0, 0x0040, IPC1, 10, 8 };
+constexpr Source t3{ "T3", IEC0, 0x0080, IPC1, 14, 12 };
+constexpr Source u1rx{ "U1RX", IEC0, 0x0200, IPC2, 6, 4 };
+constexpr Source u1tx{ "U1TX", IEC0, 0x0400, IPC2, 10, 8 };
+constexpr Source adc{ "ADC", IEC0, 0x0800, IPC2, 14, 12 };
+constexpr Source t4{ "T4", IEC1, 0x0020, IPC5, 6, 4 };
+constexpr Source t5{ "T5", IEC1, 0x0040, IPC5, 10, 8 };
+constexpr Source sources[] = { int0, t1, t2, t3, u1rx, u1tx, adc, t4, t5 };
+
+uint16_t priority(simulated::Chip &chip, const Source &source)
+{
+    return field(chip.sfr(source.priority_register), source.high, source.low);
+}
+
+// §1.7: priorities are 1 to 7, and 0 disables the source: its interrupt
+// would never be taken, whatever its enable bit says.
+::testing::AssertionResult can_interrupt(simulated::Chip &chip, const Source &source)
+{
+    uint16_t level = priority(chip, source);
+    if (level >= 1 && level <= 7)
+        return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << source.name << " has priority " << level << ": the chip would never take it";
+}
+
 struct Dspic30 : ::testing::Test {
     simulated::Chip chip;
     hal_board board{};
@@ -86,7 +122,7 @@ TEST_F(Dspic30, MillisecondClockCountsTimer1Ticks)
     EXPECT_EQ(chip.sfr(T1CON), 0x8000); // TON, TCKPS = 00, internal clock
     EXPECT_EQ(chip.sfr(TMR1), 0);
     EXPECT_NE(chip.sfr(IEC0) & 0x0008, 0);
-    EXPECT_EQ(field(chip.sfr(IPC0), 14, 12), DSPIC30_PRIORITY_CLOCK);
+    EXPECT_TRUE(can_interrupt(chip, t1));
     for (int i = 0; i < 512; i++) {
         chip.sfr(IFS0) |= 0x0008;
         dspic30_on_clock_tick(&board);
@@ -115,9 +151,12 @@ TEST_F(Dspic30, Uart1RunsAt115200EightNOneWithReceiveInterrupt)
     auto modes = writes_to(U1MODE);
     ASSERT_FALSE(modes.empty());
     EXPECT_EQ(modes.back(), 0x8000);
-    EXPECT_NE(chip.sfr(IEC0) & 0x0200, 0);     // U1RXIE
-    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0);     // U1TXIE off: sending polls
-    EXPECT_EQ(field(chip.sfr(IPC2), 6, 4), 5); // U1RX priority 5 as the library
+    EXPECT_EQ(status & 0x8000, 0x8000);    // UTXISEL: when the buffer empties, as the library
+    EXPECT_NE(chip.sfr(IEC0) & 0x0200, 0); // U1RXIE
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0); // U1TXIE: only while bytes wait
+    // §2.1: the library runs both UART1 interrupts at priority 5.
+    EXPECT_EQ(priority(chip, u1rx), 5);
+    EXPECT_EQ(priority(chip, u1tx), 5);
 }
 
 TEST_F(Dspic30, ReceivedBytesGoThroughTheRingToTheLink)
@@ -151,7 +190,7 @@ TEST_F(Dspic30, RingDropsBytesWhenFullInsteadOfOverwriting)
     ASSERT_GE(count, 522);
     for (uint16_t i = 0; i < count; i++)
         ASSERT_EQ(received[i], uint8_t(i));
-    EXPECT_EQ(board.receive_overruns, 1100 - count);
+    EXPECT_EQ(board.link.receive_overruns, 1100 - count);
 }
 
 TEST_F(Dspic30, OverrunIsCleared)
@@ -161,28 +200,55 @@ TEST_F(Dspic30, OverrunIsCleared)
     EXPECT_EQ(chip.sfr(U1STA) & 0x0002, 0);
 }
 
-TEST_F(Dspic30, LinkSendWritesTransmitRegister)
+// Sending never waits for the line: the ring takes what fits, the
+// transmit buffer gets 4 bytes at once, and each time the line empties it
+// the interrupt refills it, until the ring is empty.
+TEST_F(Dspic30, LinkSendQueuesAndTheTransmitInterruptDrains)
 {
-    const uint8_t bytes[] = { 0x01, 0x00, 0xFE, 0xFF, 0x42 };
-    hal_link_send(&board, bytes, sizeof bytes);
-    EXPECT_EQ(chip.uart_sent, std::vector<uint8_t>(bytes, bytes + sizeof bytes));
+    std::vector<uint8_t> bytes(600);
+    for (size_t i = 0; i < bytes.size(); i++)
+        bytes[i] = uint8_t(i * 7 + 3);
+    EXPECT_EQ(hal_link_send_room(&board), HAL_LINK_TRANSMIT_CAPACITY);
+    uint16_t taken = hal_link_send(&board, bytes.data(), uint16_t(bytes.size()));
+    ASSERT_EQ(taken, HAL_LINK_TRANSMIT_CAPACITY); // a whole frame fits (protocol.md §2)
+    EXPECT_GE(taken, 522);
+    EXPECT_EQ(chip.uart_fifo.size(), 4u);
+    EXPECT_EQ(hal_link_send_room(&board), 4);
+    EXPECT_NE(chip.sfr(IEC0) & 0x0400, 0); // U1TXIE while bytes wait
+    EXPECT_EQ(hal_link_send(&board, bytes.data(), 10), 4);
+
+    int interrupts = 0;
+    while (chip.uart_shift_out()) {
+        if ((chip.sfr(IFS0) & 0x0400) && (chip.sfr(IEC0) & 0x0400)) {
+            dspic30_on_uart1_transmit(&board);
+            interrupts++;
+            EXPECT_EQ(chip.sfr(IFS0) & 0x0400, 0);
+        }
+    }
+    std::vector<uint8_t> expected(bytes.begin(), bytes.begin() + taken);
+    expected.insert(expected.end(), bytes.begin(), bytes.begin() + 4);
+    EXPECT_EQ(chip.uart_sent, expected);
+    EXPECT_EQ(chip.uart_lost, 0);                              // never written while full
+    EXPECT_EQ(interrupts, (int(expected.size()) + 3) / 4 - 1); // one per 4 bytes after the first
+    EXPECT_EQ(chip.sfr(IEC0) & 0x0400, 0);                     // nothing left: U1TXIE off
+    EXPECT_EQ(hal_link_send_room(&board), HAL_LINK_TRANSMIT_CAPACITY);
 }
 
 TEST_F(Dspic30, AgendaTimerAt100MicrosecondsMatchesTheLibrary)
 {
     int calls = 0;
     auto count = [](void *context) { ++*static_cast<int *>(context); };
-    ASSERT_TRUE(hal_timer_start(&board, HAL_TIMER_AGENDA, 100, count, &calls));
+    ASSERT_TRUE(epuck_board_timer_start(&board, EPUCK_TIMER_AGENDA, 100, count, &calls));
     // §3.13: the library's 0.1 ms agenda uses PR2 = 1474 at 1:1.
     EXPECT_EQ(chip.sfr(PR2), 1474);
     EXPECT_EQ(chip.sfr(T2CON), 0x8000);
     EXPECT_NE(chip.sfr(IEC0) & 0x0040, 0);
-    EXPECT_EQ(field(chip.sfr(IPC1), 10, 8), DSPIC30_PRIORITY_TIMERS);
+    EXPECT_TRUE(can_interrupt(chip, t2));
     chip.sfr(IFS0) |= 0x0040;
-    dspic30_on_timer(&board, HAL_TIMER_AGENDA);
+    dspic30_on_timer(&board, EPUCK_TIMER_AGENDA);
     EXPECT_EQ(calls, 1);
     EXPECT_EQ(chip.sfr(IFS0) & 0x0040, 0);
-    hal_timer_stop(&board, HAL_TIMER_AGENDA);
+    epuck_board_timer_stop(&board, EPUCK_TIMER_AGENDA);
     EXPECT_EQ(chip.sfr(T2CON) & 0x8000, 0);
     EXPECT_EQ(chip.sfr(IEC0) & 0x0040, 0);
 }
@@ -193,11 +259,11 @@ TEST_F(Dspic30, MotorTimerPeriodsUseTheSmallestFittingPrescaler)
 {
     const uint16_t prescale[] = { 1, 8, 64, 256 };
     for (uint32_t microseconds : { 20u, 1000u, 4000u, 25000u, 100000u, 1000000u }) {
-        for (hal_timer timer : { HAL_TIMER_MOTOR_LEFT, HAL_TIMER_MOTOR_RIGHT }) {
-            ASSERT_TRUE(hal_timer_start(&board, timer, microseconds, nullptr, nullptr));
+        for (epuck_timer timer : { EPUCK_TIMER_MOTOR_LEFT, EPUCK_TIMER_MOTOR_RIGHT }) {
+            ASSERT_TRUE(epuck_board_timer_start(&board, timer, microseconds, nullptr, nullptr));
             // Left motor on Timer5, right on Timer4 (§3.6).
-            uint16_t control = chip.sfr(timer == HAL_TIMER_MOTOR_LEFT ? T5CON : T4CON);
-            uint16_t period = chip.sfr(timer == HAL_TIMER_MOTOR_LEFT ? PR5 : PR4);
+            uint16_t control = chip.sfr(timer == EPUCK_TIMER_MOTOR_LEFT ? T5CON : T4CON);
+            uint16_t period = chip.sfr(timer == EPUCK_TIMER_MOTOR_LEFT ? PR5 : PR4);
             int code = field(control, 5, 4);
             EXPECT_EQ(control & 0x8000, 0x8000);
             EXPECT_EQ(control & 0x000A, 0); // 16-bit, internal clock
@@ -209,10 +275,10 @@ TEST_F(Dspic30, MotorTimerPeriodsUseTheSmallestFittingPrescaler)
         }
     }
     EXPECT_NE(chip.sfr(IEC1) & 0x0060, 0); // T4IE, T5IE
-    EXPECT_EQ(field(chip.sfr(IPC5), 6, 4), DSPIC30_PRIORITY_TIMERS);
-    EXPECT_EQ(field(chip.sfr(IPC5), 10, 8), DSPIC30_PRIORITY_TIMERS);
-    EXPECT_FALSE(hal_timer_start(&board, HAL_TIMER_SPARE, 2000000, nullptr, nullptr));
-    EXPECT_FALSE(hal_timer_start(&board, HAL_TIMER_SPARE, 1, nullptr, nullptr));
+    EXPECT_TRUE(can_interrupt(chip, t4));
+    EXPECT_TRUE(can_interrupt(chip, t5));
+    EXPECT_FALSE(epuck_board_timer_start(&board, EPUCK_TIMER_SPARE, 2000000, nullptr, nullptr));
+    EXPECT_FALSE(epuck_board_timer_start(&board, EPUCK_TIMER_SPARE, 1, nullptr, nullptr));
     (void)IFS1;
 }
 
@@ -224,17 +290,17 @@ TEST_F(Dspic30, AdcStartsInManualModeWithValidConversionClock)
     uint16_t adcs = field(chip.sfr(ADCON3), 5, 0);
     double tad = (adcs + 1) / 2.0 / FCY;
     EXPECT_GE(tad, 667e-9); // §2.3 minimum at 3.3 V
-    EXPECT_EQ(field(chip.sfr(IPC2), 14, 12), DSPIC30_PRIORITY_ADC);
+    EXPECT_TRUE(can_interrupt(chip, adc));
 }
 
 TEST_F(Dspic30, SingleConversionReadsTheChannel)
 {
-    chip.analog[HAL_ADC_ACCELEROMETER_Y] = 2345;
-    chip.analog[HAL_ADC_PROXIMITY_0 + 3] = 17;
-    EXPECT_EQ(hal_adc_read(&board, 6), 2345);
+    chip.analog[EPUCK_ADC_ACCELEROMETER_Y] = 2345;
+    chip.analog[EPUCK_ADC_PROXIMITY_0 + 3] = 17;
+    EXPECT_EQ(epuck_board_adc_read(&board, 6), 2345);
     EXPECT_EQ(chip.sfr(ADCHS), 6);
-    EXPECT_EQ(hal_adc_read(&board, 11), 17);
-    EXPECT_EQ(hal_adc_read(&board, 16), 0);
+    EXPECT_EQ(epuck_board_adc_read(&board, 11), 17);
+    EXPECT_EQ(epuck_board_adc_read(&board, 16), 0);
 }
 
 TEST_F(Dspic30, ScansInterruptAt16384HzLikeTheLibrary)
@@ -244,7 +310,7 @@ TEST_F(Dspic30, ScansInterruptAt16384HzLikeTheLibrary)
         uint16_t gctronic_adcs; // §2.3, advanced scan driver
     };
     for (Scan scan : { Scan{ 0x001C, 39 }, Scan{ 0x111C, 23 }, Scan{ 0x00FC, 19 } }) {
-        ASSERT_TRUE(hal_adc_scan_start(&board, scan.mask, nullptr, nullptr));
+        ASSERT_TRUE(epuck_board_adc_scan_start(&board, scan.mask, nullptr, nullptr));
         EXPECT_EQ(chip.sfr(ADCSSL), scan.mask);
         int channels = __builtin_popcount(scan.mask);
         EXPECT_EQ(chip.sfr(ADCON1), 0x80E4);                         // ADON, SSRC = 111, ASAM
@@ -256,9 +322,9 @@ TEST_F(Dspic30, ScansInterruptAt16384HzLikeTheLibrary)
         EXPECT_DOUBLE_EQ(1 / scan_seconds, 16384.0);
         EXPECT_NE(chip.sfr(IEC0) & 0x0800, 0);
     }
-    EXPECT_FALSE(hal_adc_scan_select(&board, 0x0004)); // one channel
-    EXPECT_FALSE(hal_adc_scan_select(&board, 0xFF00)); // eight
-    hal_adc_scan_stop(&board);
+    EXPECT_FALSE(epuck_board_adc_scan_select(&board, 0x0004)); // one channel
+    EXPECT_FALSE(epuck_board_adc_scan_select(&board, 0xFF00)); // eight
+    epuck_board_adc_scan_stop(&board);
     EXPECT_EQ(chip.sfr(IEC0) & 0x0800, 0);
     EXPECT_EQ(chip.sfr(ADCON1), 0x8000);
 }
@@ -269,15 +335,15 @@ TEST_F(Dspic30, ScanInterruptHandsTheBufferToTheCallback)
     auto keep = [](void *context, const uint16_t *values, uint8_t count) {
         static_cast<std::vector<uint16_t> *>(context)->assign(values, values + count);
     };
-    ASSERT_TRUE(hal_adc_scan_start(&board, 0x221C, keep, &got));
+    ASSERT_TRUE(epuck_board_adc_scan_start(&board, 0x221C, keep, &got));
     for (uint16_t i = 0; i < 5; i++)
         chip.sfr(uint16_t(ADCBUF0 + 2 * i)) = uint16_t(1000 + i);
     chip.sfr(IFS0) |= 0x0800;
     dspic30_on_adc(&board);
     EXPECT_EQ(got, (std::vector<uint16_t>{ 1000, 1001, 1002, 1003, 1004 }));
     EXPECT_EQ(chip.sfr(IFS0) & 0x0800, 0);
-    EXPECT_EQ(hal_adc_read(&board, 5), 0); // no single reads while scanning
-    ASSERT_TRUE(hal_adc_scan_select(&board, 0x00FC));
+    EXPECT_EQ(epuck_board_adc_read(&board, 5), 0); // no single reads while scanning
+    ASSERT_TRUE(epuck_board_adc_scan_select(&board, 0x00FC));
     EXPECT_EQ(chip.sfr(ADCSSL), 0x00FC);
 }
 
@@ -289,17 +355,17 @@ TEST_F(Dspic30, I2cWritesAndReadsCameraRegisters)
     chip.i2c_devices[0xDC][0x00] = 0x30;
     chip.i2c_devices[0xDC][0x01] = 0x30;
     uint8_t id[2] = {};
-    ASSERT_TRUE(hal_i2c_read(&board, HAL_I2C_CAMERA_ADDRESS, 0x00, id, 2));
+    ASSERT_TRUE(epuck_board_i2c_read(&board, EPUCK_I2C_CAMERA_ADDRESS, 0x00, id, 2));
     EXPECT_EQ(id[0], 0x30); // PO3030K (§3.5)
     EXPECT_EQ(id[1], 0x30);
     const uint8_t gains[] = { 0x10, 0x40, 0x40 };
-    ASSERT_TRUE(hal_i2c_write(&board, 0xDC, 0x15, gains, 3));
+    ASSERT_TRUE(epuck_board_i2c_write(&board, 0xDC, 0x15, gains, 3));
     EXPECT_EQ(chip.i2c_devices[0xDC][0x15], 0x10);
     EXPECT_EQ(chip.i2c_devices[0xDC][0x17], 0x40);
     // The last byte read gets a NACK (ACKDT = 1).
     EXPECT_NE(chip.sfr(I2CCON) & 0x0020, 0);
-    EXPECT_FALSE(hal_i2c_read(&board, 0x3C, 0x0F, id, 1)); // nobody at 0x3C
-    EXPECT_FALSE(hal_i2c_write(&board, 0x3C, 0x0F, gains, 1));
+    EXPECT_FALSE(epuck_board_i2c_read(&board, 0x3C, 0x0F, id, 1)); // nobody at 0x3C
+    EXPECT_FALSE(epuck_board_i2c_write(&board, 0x3C, 0x0F, gains, 1));
 }
 
 TEST_F(Dspic30, PortsFollowThePinMap)
@@ -313,31 +379,80 @@ TEST_F(Dspic30, PortsFollowThePinMap)
     EXPECT_EQ(chip.sfr(TRISF) & 0x0180, 0);      // IR pulses 0/4, 1/5 out
     EXPECT_EQ(chip.sfr(TRISF) & 0x0042, 0x0042); // remote, battery low in
     EXPECT_EQ(chip.sfr(TRISC) & 0x2006, 0);      // front, body LED, camera reset out
-    hal_pin_write(&board, HAL_PIN_LED_3, true);
+    epuck_board_pin_write(&board, EPUCK_PIN_LED_3, true);
     EXPECT_EQ(chip.sfr(LATA), 1u << 12); // LED3 is RA12
-    hal_pin_write(&board, HAL_PIN_MOTOR_RIGHT_C, true);
+    epuck_board_pin_write(&board, EPUCK_PIN_MOTOR_RIGHT_C, true);
     EXPECT_EQ(chip.sfr(LATD), 1u << 6);
-    EXPECT_TRUE(hal_pin_read(&board, HAL_PIN_MOTOR_RIGHT_C));
-    hal_pin_write(&board, HAL_PIN_SELECTOR_0, true); // an input: ignored
-    chip.sfr(PORTG) = 0x0280;                        // RG7, RG9
+    EXPECT_TRUE(epuck_board_pin_read(&board, EPUCK_PIN_MOTOR_RIGHT_C));
+    epuck_board_pin_write(&board, EPUCK_PIN_SELECTOR_0, true); // an input: ignored
+    chip.sfr(PORTG) = 0x0280;                                  // RG7, RG9
     int selector = 0;
     for (int bit = 0; bit < 4; bit++)
-        selector |= hal_pin_read(&board, hal_pin(HAL_PIN_SELECTOR_0 + bit)) << bit;
+        selector |= epuck_board_pin_read(&board, epuck_pin(EPUCK_PIN_SELECTOR_0 + bit)) << bit;
     EXPECT_EQ(selector, 0b1010);
+}
+
+// A camera row is read in steps: while no frame begins, a step returns
+// after its polls, and the read fails once no frame came for half a second.
+TEST_F(Dspic30, CameraStepsNeverWaitForAFrame)
+{
+    constexpr uint16_t PORTC = TRISC + 2;
+    chip.sfr(PORTC) = 0; // VSYNC (RC4, §3.5) inactive: no frame begins
+    uint8_t bytes[4] = {};
+    epuck_board_camera_start(&board, 10, bytes, sizeof bytes);
+    for (int step = 0; step < 5; step++)
+        EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
+    for (int tick = 0; tick < 520; tick++) // Timer1 ticks of 1/1024 s: 508 ms
+        dspic30_on_clock_tick(&board);
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED);
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED); // until started again
 }
 
 TEST_F(Dspic30, RemoteEdgesComeFromInt0)
 {
     int edges = 0;
     auto count = [](void *context) { ++*static_cast<int *>(context); };
-    EXPECT_FALSE(hal_pin_watch_falling_edge(&board, HAL_PIN_SELECTOR_0, count, &edges));
-    ASSERT_TRUE(hal_pin_watch_falling_edge(&board, HAL_PIN_REMOTE, count, &edges));
+    EXPECT_FALSE(epuck_board_pin_watch_falling_edge(&board, EPUCK_PIN_SELECTOR_0, count, &edges));
+    ASSERT_TRUE(epuck_board_pin_watch_falling_edge(&board, EPUCK_PIN_REMOTE, count, &edges));
     EXPECT_NE(chip.sfr(IEC0) & 0x0001, 0);
-    EXPECT_EQ(field(chip.sfr(IPC0), 2, 0), DSPIC30_PRIORITY_REMOTE);
+    EXPECT_TRUE(can_interrupt(chip, int0));
     dspic30_on_remote_edge(&board);
     EXPECT_EQ(edges, 1);
-    hal_pin_unwatch(&board, HAL_PIN_REMOTE);
+    epuck_board_pin_unwatch(&board, EPUCK_PIN_REMOTE);
     EXPECT_EQ(chip.sfr(IEC0) & 0x0001, 0);
+}
+
+// Every source the board uses has a priority the chip takes, set at
+// start-up (§1.7: the reset value of the fields is not documented).
+TEST_F(Dspic30, EveryInterruptTheBoardUsesCanBeTaken)
+{
+    for (const Source &source : sources)
+        EXPECT_TRUE(can_interrupt(chip, source));
+}
+
+// The order follows from the timings: a scan's 5 results are overwritten
+// 61 µs later (16384 Hz, §2.3), UART1's 4-byte buffers fill or empty in
+// 347 µs (§2.1), a motor step may come a few µs late, and the millisecond
+// clock's ticks are 977 µs apart.
+TEST_F(Dspic30, PrioritiesFollowHowLongEachSourceCanWait)
+{
+    EXPECT_GT(priority(chip, adc), priority(chip, u1rx));
+    for (const Source &timer : { t2, t3, t4, t5 }) {
+        EXPECT_GT(priority(chip, u1rx), priority(chip, timer)) << timer.name;
+        EXPECT_GT(priority(chip, timer), priority(chip, t1)) << timer.name;
+    }
+}
+
+// The checks above can fail: a field cleared to 0 is caught.
+TEST_F(Dspic30, APriorityOfZeroIsCaught)
+{
+    for (const Source &source : sources) {
+        uint16_t &field_register = chip.sfr(source.priority_register);
+        uint16_t saved = field_register;
+        field_register = uint16_t(field_register & ~(0x7u << source.low));
+        EXPECT_FALSE(can_interrupt(chip, source)) << source.name;
+        field_register = saved;
+    }
 }
 
 TEST_F(Dspic30, CriticalSectionRaisesCpuPriorityToSeven)
@@ -355,7 +470,7 @@ TEST_F(Dspic30, CriticalSectionRaisesCpuPriorityToSeven)
 TEST_F(Dspic30, FlashRowEraseWriteReadEndToEnd)
 {
     const uint32_t row = 0x012340 & ~0x3Fu; // a row in the third panel (page 1)
-    ASSERT_TRUE(hal_flash_erase_row(&board, row));
+    ASSERT_TRUE(hal_flash_erase(&board, row));
     ASSERT_EQ(chip.operations.size(), 1u);
     // §1.3: NVMCON 0x4041, NVMADRU:NVMADR written before the keys.
     EXPECT_EQ(chip.operations[0].nvmcon, 0x4041);
@@ -367,7 +482,7 @@ TEST_F(Dspic30, FlashRowEraseWriteReadEndToEnd)
     std::vector<uint32_t> instructions(32);
     for (uint32_t i = 0; i < 32; i++)
         instructions[i] = (0xA5u << 16) | (i * 0x0101u) | 0x8000u;
-    ASSERT_TRUE(hal_flash_write_row(&board, row, instructions.data()));
+    ASSERT_TRUE(hal_flash_program(&board, row, instructions.data(), 32));
     ASSERT_EQ(chip.operations.size(), 2u);
     EXPECT_EQ(chip.operations[1].nvmcon, 0x4001);
     EXPECT_EQ(chip.operations[1].address, row);
@@ -375,13 +490,13 @@ TEST_F(Dspic30, FlashRowEraseWriteReadEndToEnd)
     for (uint32_t i = 0; i < 32; i++)
         EXPECT_EQ(hal_flash_read(&board, row + 2 * i), instructions[i]) << i;
     EXPECT_EQ(hal_flash_read(&board, row + 0x40), 0xFFFFFFu); // next row untouched
-    EXPECT_FALSE(hal_flash_erase_row(&board, row + 2));       // not a row start
-    EXPECT_FALSE(hal_flash_erase_row(&board, 0x018000));      // past the end
+    EXPECT_FALSE(hal_flash_erase(&board, row + 2));           // not a row start
+    EXPECT_FALSE(hal_flash_erase(&board, 0x018000));          // past the end
 }
 
 TEST_F(Dspic30, UnlockIsKeyFiveFiveKeyAAThenWriteWithInterruptsMasked)
 {
-    ASSERT_TRUE(hal_eeprom_erase_word(&board, 3));
+    ASSERT_TRUE(dspic30_eeprom_erase_word(&board, 3));
     // The writes around the key sequence: mask (SR), 0x55, 0xAA, WR set
     // on the erase code, nothing between them.
     size_t n = chip.writes.size();
@@ -413,21 +528,21 @@ TEST_F(Dspic30, UnlockIsKeyFiveFiveKeyAAThenWriteWithInterruptsMasked)
 TEST_F(Dspic30, EepromWordEraseWriteReadEndToEnd)
 {
     const uint16_t index = 1000;
-    ASSERT_TRUE(hal_eeprom_erase_word(&board, index));
+    ASSERT_TRUE(dspic30_eeprom_erase_word(&board, index));
     // §1.4: NVMCON 0x4044, NVMADRU = 0x7F, NVMADR = 0xF000 + 2 × index.
     EXPECT_EQ(chip.operations.back().nvmcon, 0x4044);
     EXPECT_EQ(chip.operations.back().address, 0x7FF000u + 2 * index);
-    ASSERT_TRUE(hal_eeprom_write_word(&board, index, 0x1234));
+    ASSERT_TRUE(dspic30_eeprom_write_word(&board, index, 0x1234));
     EXPECT_EQ(chip.operations.back().nvmcon, 0x4004);
     EXPECT_EQ(chip.operations.back().address, 0x7FF000u + 2 * index);
     EXPECT_EQ(writes_to(TBLPAG).back(), 0x7F);
     EXPECT_EQ(chip.eeprom[index], 0x1234);
-    EXPECT_EQ(hal_eeprom_read(&board, index), 0x1234);
-    EXPECT_EQ(hal_eeprom_read(&board, index + 1), 0xFFFF);
+    EXPECT_EQ(dspic30_eeprom_read(&board, index), 0x1234);
+    EXPECT_EQ(dspic30_eeprom_read(&board, index + 1), 0xFFFF);
     // Without an erase, bits only go down.
-    ASSERT_TRUE(hal_eeprom_write_word(&board, index, 0xFF0F));
-    EXPECT_EQ(hal_eeprom_read(&board, index), 0x1204);
-    EXPECT_FALSE(hal_eeprom_write_word(&board, 2048, 0));
+    ASSERT_TRUE(dspic30_eeprom_write_word(&board, index, 0xFF0F));
+    EXPECT_EQ(dspic30_eeprom_read(&board, index), 0x1204);
+    EXPECT_FALSE(dspic30_eeprom_write_word(&board, 2048, 0));
 }
 
 TEST_F(Dspic30, IdleAndResetUseTheirInstructions)

@@ -22,7 +22,9 @@ constexpr uint16_t I2CRCV = 0x0200, I2CTRN = 0x0202, I2CCON = 0x0206, I2CSTAT = 
 constexpr uint16_t ADCBUF0 = 0x0280, ADCON1 = 0x02A0, ADCHS = 0x02A6;
 
 constexpr uint16_t WR = 0x8000;
-constexpr uint16_t URXDA = 0x0001, TRMT = 0x0100;
+constexpr uint16_t URXDA = 0x0001, TRMT = 0x0100, UTXBF = 0x0200;
+constexpr uint16_t U1TXIF = 0x0400;
+constexpr size_t UART_FIFO_BYTES = 4; // §2.1: a 4-deep transmit buffer
 constexpr uint16_t SEN = 0x0001, RSEN = 0x0002, PEN = 0x0004, RCEN = 0x0008, ACKEN = 0x0010;
 constexpr uint16_t ACKSTAT = 0x8000, RBF = 0x0002;
 constexpr uint16_t ADON = 0x8000, SSRC = 0x00E0, SAMP = 0x0002, DONE = 0x0001;
@@ -50,6 +52,18 @@ Chip::~Chip()
     current = nullptr;
 }
 
+bool Chip::uart_shift_out()
+{
+    if (uart_fifo.empty())
+        return false;
+    uart_sent.push_back(uart_fifo.front());
+    uart_fifo.pop_front();
+    // UTXISEL = 1: the transmit interrupt when the buffer has emptied.
+    if (uart_fifo.empty() && (sfr(U1STA) & 0x8000))
+        sfr(IFS0) |= U1TXIF;
+    return true;
+}
+
 Chip &chip()
 {
     if (!current)
@@ -62,8 +76,14 @@ uint16_t Chip::read(uint16_t address)
     if (address >= 0x800 || address % 2)
         throw std::out_of_range("SFR address " + std::to_string(address));
     if (address == U1STA) {
-        uint16_t status = sfr(U1STA) & ~URXDA;
-        return uart_receive.empty() ? status : uint16_t(status | URXDA);
+        uint16_t status = sfr(U1STA) & ~(URXDA | UTXBF | TRMT);
+        if (!uart_receive.empty())
+            status |= URXDA;
+        if (uart_fifo.size() == UART_FIFO_BYTES)
+            status |= UTXBF;
+        if (uart_fifo.empty())
+            status |= TRMT; // nothing left to shift out
+        return status;
     }
     if (address == U1RXREG) {
         if (uart_receive.empty())
@@ -85,7 +105,12 @@ void Chip::write(uint16_t address, uint16_t value)
     uint16_t previous = sfr(address);
     sfr(address) = value;
     switch (address) {
-    case U1TXREG: uart_sent.push_back(uint8_t(value)); break;
+    case U1TXREG:
+        if (uart_fifo.size() == UART_FIFO_BYTES)
+            uart_lost++;
+        else
+            uart_fifo.push_back(uint8_t(value));
+        break;
     case U1STA: // URXDA is read-only
         break;
     case I2CCON: on_i2c_control(value); break;

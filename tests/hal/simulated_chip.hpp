@@ -55,7 +55,13 @@ class Chip
     int rejected_unlocks = 0; // WR set without the key sequence just before
 
     std::deque<uint8_t> uart_receive; // bytes waiting in U1RX's FIFO
-    std::vector<uint8_t> uart_sent;   // bytes written to U1TXREG
+    std::deque<uint8_t> uart_fifo;    // bytes written to U1TXREG, not yet on the line
+    std::vector<uint8_t> uart_sent;   // bytes that left on the line, in order
+    int uart_lost = 0;                // bytes written to U1TXREG while UTXBF was set
+
+    // The line takes the oldest byte of the transmit buffer (false when it
+    // is empty); with UTXISEL = 1, the buffer emptying sets U1TXIF.
+    bool uart_shift_out();
     uint16_t analog[16] = {};
 
     // I2C devices by 8-bit write address: 256 registers each.

@@ -1,4 +1,4 @@
-// native_functions/nat_dsp_dspic30.c, the dsPIC DSP-engine version of the
+// hal/dspic30/dspic30_dsp_kernel.c, the dsPIC DSP-engine version of the
 // inner loop of dsp.fir/corr/conv, run on the host against a model of the
 // XC16 DSP builtins (dspic30_dsp_engine_model.h; module.mk renames its
 // function nat_dsp_scaled_dot_product_dspic30). Both it and the portable
@@ -6,7 +6,7 @@
 // double precision (exact: |sum| < 2^53), divided by 2^shift, rounded half
 // up and clamped to int16 — on random inputs, at the extremes, at rounding
 // ties and at both sides of the saturation thresholds. What this cannot
-// check is that the model matches the chip (README-dsp-dspic30.md).
+// check is that the model matches the chip (hal/dspic30/README-dsp.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,7 +1,7 @@
 // A C model of the parts of the dsPIC30F DSP engine that
-// native_functions/nat_dsp_dspic30.c uses, so that the file compiles and
-// runs on the host (tests/native_functions_dsp/module.mk builds it with
-// NAT_DSP_SIMULATED_DSP_ENGINE). Included by that file only.
+// hal/dspic30/dspic30_dsp_kernel.c uses, so that the file compiles and runs
+// on the host (tests/native_functions_dsp/module.mk builds it with
+// NAT_DSP_SIMULATED_DSP_ENGINE and includes this model ahead of it).
 //
 // What is modelled, as the dsPIC30F Family Reference Manual describes the
 // engine (⚠ from memory, not re-read):

@@ -50,7 +50,8 @@ Outputs (compile):
                            hex (one 0xXXXX word per line, the default) or c
                            (a C array)
   --listing                print the disassembly with source lines
-  --variables              print the variable map: name, address, size
+  --variables              print the variable map: name, address, size (locals
+                           too, with their handler or subroutine)
   With no output option, asebac only checks the program and says how big it is.
 
 Running (run):
@@ -303,8 +304,13 @@ int main(int argc, char **argv)
         std::printf("%-24s %7s %5s\n", "variable", "address", "size");
         for (const auto &variable : result.variables)
             std::printf("%-24s %7u %5u\n", variable.name.c_str(), variable.address, variable.size);
-        std::printf(
-          "%u of %u words used by variables\n", result.allocated_variables, target.variables_size);
+        for (const auto &local : result.locals) // docs/language.md: where locals live
+            std::printf("%-24s %7u %5u  local of %s\n",
+                        local.name.c_str(), local.address, local.size, local.owner.c_str());
+        std::printf("%u of %u words used by variables (%u by the locals, shared)\n",
+                    result.allocated_variables,
+                    target.variables_size,
+                    result.locals_words);
     }
     if (options.output.empty() && !options.listing && !options.variables)
         std::cout << program.file_name << ": " << result.bytecode.size() << " of "

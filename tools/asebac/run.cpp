@@ -6,6 +6,7 @@
 #include <sstream>
 
 extern "C" {
+#include "firmware/epuck_natives.h"
 #include "nat_standard.h"
 #include "vm.h"
 #include "vm_opcodes.h"
@@ -102,21 +103,23 @@ bool run_event(vm_state &vm, unsigned long budget)
 
 } // namespace
 
-bool run_program(const CompileResult &compiled,
-                 const TargetDescription &target,
-                 const CommonDefinitions &definitions,
-                 const std::vector<EventToSend> &events,
-                 unsigned long step_budget,
-                 std::string &report,
-                 std::string &error)
+bool execute_program(const CompileResult &compiled,
+                     const TargetDescription &target,
+                     const CommonDefinitions &definitions,
+                     const std::vector<EventToSend> &events,
+                     unsigned long step_budget,
+                     RunOutcome &outcome,
+                     std::string &error)
 {
-    // the target's natives, found by name among the host's implementations
+    // the target's natives, found by name among the host's implementations:
+    // the standard ones and the e-puck's (the firmware's own table)
     std::vector<const vm_native *> natives;
     for (const auto &function : target.native_functions) {
         const vm_native *found = nullptr;
-        for (uint16_t i = 0; i < nat_standard_table.count; ++i)
-            if (function.name == nat_standard_table.natives[i]->name)
-                found = nat_standard_table.natives[i];
+        for (const vm_native_table *table : { &nat_standard_table, &epuck_native_table })
+            for (uint16_t i = 0; i < table->count && found == nullptr; ++i)
+                if (function.name == table->natives[i]->name)
+                    found = table->natives[i];
         if (found == nullptr) {
             error = "native function " + function.name + " has no implementation on the host";
             return false;
@@ -142,7 +145,7 @@ bool run_program(const CompileResult &compiled,
     if (!target.named_variables.empty()) // `id` comes first by convention (bytecode.md §7)
         variables[0] = static_cast<int16_t>(NODE_ID);
 
-    std::vector<std::string> unfinished;
+    std::vector<std::string> &unfinished = outcome.unfinished;
     session.current_event = "init";
     vm_set_bytecode(
       &vm, 0, compiled.bytecode.data(), static_cast<uint16_t>(compiled.bytecode.size()));
@@ -179,6 +182,24 @@ bool run_program(const CompileResult &compiled,
             unfinished.push_back(event.name);
     }
 
+    outcome.memory = variables;
+    outcome.emitted = session.emitted;
+    outcome.errors = session.errors;
+    return true;
+}
+
+bool run_program(const CompileResult &compiled,
+                 const TargetDescription &target,
+                 const CommonDefinitions &definitions,
+                 const std::vector<EventToSend> &events,
+                 unsigned long step_budget,
+                 std::string &report,
+                 std::string &error)
+{
+    RunOutcome outcome;
+    if (!execute_program(compiled, target, definitions, events, step_budget, outcome, error))
+        return false;
+    const std::vector<int16_t> &variables = outcome.memory;
     std::ostringstream out;
     out << "{\n  \"variables\": {";
     bool first = true;
@@ -195,14 +216,14 @@ bool run_program(const CompileResult &compiled,
         out << "]";
     }
     out << "\n  },\n  \"emitted\": [";
-    for (size_t i = 0; i < session.emitted.size(); ++i)
-        out << (i ? ",\n    " : "\n    ") << session.emitted[i];
-    out << (session.emitted.empty() ? "" : "\n  ") << "],\n  \"errors\": [";
-    for (size_t i = 0; i < session.errors.size(); ++i)
-        out << (i ? ",\n    " : "\n    ") << session.errors[i];
-    out << (session.errors.empty() ? "" : "\n  ") << "],\n  \"unfinished\": [";
-    for (size_t i = 0; i < unfinished.size(); ++i)
-        out << (i ? ", " : "") << json_string(unfinished[i]);
+    for (size_t i = 0; i < outcome.emitted.size(); ++i)
+        out << (i ? ",\n    " : "\n    ") << outcome.emitted[i];
+    out << (outcome.emitted.empty() ? "" : "\n  ") << "],\n  \"errors\": [";
+    for (size_t i = 0; i < outcome.errors.size(); ++i)
+        out << (i ? ",\n    " : "\n    ") << outcome.errors[i];
+    out << (outcome.errors.empty() ? "" : "\n  ") << "],\n  \"unfinished\": [";
+    for (size_t i = 0; i < outcome.unfinished.size(); ++i)
+        out << (i ? ", " : "") << json_string(outcome.unfinished[i]);
     out << "]\n}\n";
     report = out.str();
     return true;

@@ -32,11 +32,34 @@ NodePointer clone(const Node &node)
     copy->address_kind = node.address_kind;
     copy->indexed_address = node.indexed_address;
     copy->size_words = node.size_words;
+    copy->frame = node.frame;
+    copy->has_reserved_temporary = node.has_reserved_temporary;
+    copy->is_statement = node.is_statement;
     copy->height = node.height;
     copy->end_line = node.end_line;
     for (const auto &child : node.children)
         copy->children.push_back(clone(*child));
     return copy;
+}
+
+bool mentions(const Node &expression, const std::string &name)
+{
+    if (expression.kind == NodeKind::Memory && expression.name == name)
+        return true;
+    for (const auto &child : expression.children)
+        if (mentions(*child, name))
+            return true;
+    return false;
+}
+
+bool contains_call(const Node &node)
+{
+    if (node.kind == NodeKind::FunctionCall)
+        return true;
+    for (const auto &child : node.children)
+        if (contains_call(*child))
+            return true;
+    return false;
 }
 
 unsigned vector_size(const Node &expression)
@@ -109,6 +132,10 @@ unsigned checked_size(const Node &expression)
         return left;
     }
     case NodeKind::Unary: return checked_size(*expression.children[0]);
+    case NodeKind::FunctionCall:
+        for (const auto &argument : expression.children)
+            checked_size(*argument);
+        return 1;
     default: return 1;
     }
 }
@@ -129,6 +156,11 @@ void check_statement_sizes(Node &statement)
         break;
     }
     // `++` and `--` have nothing to compare; their target is checked when expanded
+    case NodeKind::FunctionCall:
+    case NodeKind::Return:
+        for (const auto &child : statement.children)
+            checked_size(*child);
+        break;
     case NodeKind::If:
     case NodeKind::While:
         if (checked_size(*statement.children[0]) != 1)
@@ -225,17 +257,20 @@ class Expander
         switch (statement->kind) {
         case NodeKind::Block: expand_block(*statement); return statement;
         case NodeKind::Assignment:
-            return expand_assignment(std::move(statement->children[0]),
-                                     std::move(statement->children[1]),
-                                     statement->position);
+            return expand_assignment(
+              std::move(statement->children[0]), std::move(statement->children[1]), *statement);
         case NodeKind::CompoundAssignment: {
             auto sum = make_node(NodeKind::Binary, statement->position);
             sum->operation = statement->operation;
             sum->children.push_back(clone(*statement->children[0]));
             sum->children.push_back(std::move(statement->children[1]));
-            return expand_assignment(
-              std::move(statement->children[0]), std::move(sum), statement->position);
+            return expand_assignment(std::move(statement->children[0]), std::move(sum), *statement);
         }
+        case NodeKind::FunctionCall: expand_arguments(*statement); return statement;
+        case NodeKind::Return:
+            if (!statement->children.empty())
+                statement->children[0] = element(*statement->children[0], 0);
+            return statement;
         case NodeKind::IncrementAssignment: {
             unsigned size = vector_size(*statement->children[0]);
             auto ones = make_node(NodeKind::Tuple, statement->position);
@@ -248,8 +283,7 @@ class Expander
             sum->operation = statement->operation;
             sum->children.push_back(clone(*statement->children[0]));
             sum->children.push_back(std::move(ones));
-            return expand_assignment(
-              std::move(statement->children[0]), std::move(sum), statement->position);
+            return expand_assignment(std::move(statement->children[0]), std::move(sum), *statement);
         }
         case NodeKind::If:
         case NodeKind::While:
@@ -307,23 +341,29 @@ class Expander
         }
     }
 
-    static bool mentions(const Node &expression, const std::string &name)
+    // The arguments of a call, word by word: parameter after parameter.
+    void expand_arguments(Node &call)
     {
-        if (expression.kind == NodeKind::Memory && expression.name == name)
-            return true;
-        for (const auto &child : expression.children)
-            if (mentions(*child, name))
-                return true;
-        return false;
+        std::vector<NodePointer> words;
+        for (const auto &argument : call.children) {
+            unsigned size = vector_size(*argument);
+            for (unsigned k = 0; k < size; ++k)
+                words.push_back(element(*argument, k));
+        }
+        call.children = std::move(words);
     }
 
     // x = e, element by element, through a temporary if e reads x (§8.1).
-    NodePointer expand_assignment(NodePointer target, NodePointer value, SourcePosition where)
+    // `statement` is the assignment written, which may hold its temporary.
+    NodePointer expand_assignment(NodePointer target, NodePointer value, const Node &statement)
     {
+        SourcePosition where = statement.position;
         unsigned size = vector_size(*target);
         auto block = make_node(NodeKind::Block, where);
         if (size > 1 && mentions(*value, target->name)) {
-            unsigned temporary = compilation.allocate_temporary(size, where);
+            unsigned temporary = statement.has_reserved_temporary
+                                   ? statement.address
+                                   : compilation.allocate_temporary(size, where);
             for (unsigned k = 0; k < size; ++k) {
                 auto store = make_node(NodeKind::Store, where);
                 store->address = temporary + k;
@@ -425,6 +465,11 @@ class Expander
                 node->children.push_back(element(*child, k));
             return node;
         }
+        case NodeKind::FunctionCall: {
+            NodePointer call = clone(expression);
+            expand_arguments(*call);
+            return call;
+        }
         default: break;
         }
         return clone(expression);
@@ -484,6 +529,10 @@ Type expression_type(const Node &expression)
     case NodeKind::ArrayRead:
         expect_type(Type::Integer, expression_type(*expression.children[0]), expression.position);
         return Type::Integer;
+    case NodeKind::FunctionCall:
+        for (const auto &argument : expression.children)
+            expect_type(Type::Integer, expression_type(*argument), argument->position);
+        return Type::Integer;
     default: return Type::Integer;
     }
 }
@@ -493,12 +542,20 @@ Type expression_type(const Node &expression)
 void check_statement_types(const Node &statement, const Compilation &compilation)
 {
     switch (statement.kind) {
-    case NodeKind::CallSub:
-        if (!compilation.find_subroutine(statement.name))
+    case NodeKind::CallSub: {
+        const Subroutine &subroutine = compilation.called_subroutine(
+          statement.name, statement.position, "Subroutine " + statement.name + " does not exists");
+        if (!subroutine.parameters.empty())
             fail(statement.position,
-                 with_suggestion("Subroutine " + statement.name + " does not exists",
-                                 statement.name,
-                                 compilation.subroutines));
+                 "Subroutine " + statement.name + " takes " +
+                   std::to_string(subroutine.parameters.size()) +
+                   " parameters: call it with its arguments, " + statement.name + "(...)");
+        break;
+    }
+    case NodeKind::FunctionCall: expression_type(statement); break;
+    case NodeKind::Return:
+        if (!statement.children.empty())
+            expect_type(Type::Integer, expression_type(*statement.children[0]), statement.position);
         break;
     case NodeKind::Block:
     case NodeKind::Emit:

@@ -48,6 +48,7 @@ class Generator
     {
         Section init;
         init.event_id = INIT_EVENT;
+        init.start = compilation.frames.front().start;
         sections.push_back(init);
         for (const auto &statement : program.children) {
             bool is_event = statement->kind == NodeKind::EventStart;
@@ -56,6 +57,7 @@ class Generator
                 last_line = statement->position.line;
                 Section section;
                 section.is_subroutine = !is_event;
+                section.start = statement->position;
                 if (is_event)
                     section.event_id = statement->event_id;
                 else
@@ -63,9 +65,13 @@ class Generator
                 sections.push_back(section);
                 continue;
             }
+            statement_code(*statement, sections.back().code);
+            unsigned depth = statement_depth(*statement, 0);
             Section &current = sections.back();
-            statement_code(*statement, current.code);
-            current.stack_depth = std::max(current.stack_depth, statement_depth(*statement));
+            if (depth > current.stack_depth) {
+                current.stack_depth = depth;
+                current.deepest_at = statement->position;
+            }
         }
         sections.back().last_line = last_line;
         return sections;
@@ -119,6 +125,12 @@ class Generator
                 line,
                 { opcode_word(VM_OP_UNARY_ARITHMETIC, static_cast<unsigned>(node.operation)) });
             break;
+        case NodeKind::FunctionCall: {
+            const Subroutine &called = call_code(node, code);
+            add(
+              code, line, { opcode_word(VM_OP_LOAD, compilation.local_address(called.frame, 0)) });
+            break;
+        }
         default:
             fail(node.position,
                  "Internal compiler error, please report a bug containing the "
@@ -229,12 +241,54 @@ class Generator
         case NodeKind::CallSub: {
             unsigned index = *compilation.find_subroutine(node.name);
             code.push_back({ { opcode_word(VM_OP_SUB_CALL, 0) }, line, static_cast<int>(index) });
-            sections.back().called.push_back(index);
             break;
         }
-        case NodeKind::Return: add(code, line, { opcode_word(VM_OP_STOP, 0) }); break;
+        case NodeKind::FunctionCall: call_code(node, code); break;
+        case NodeKind::Return:
+            if (!node.children.empty()) { // the value goes in the frame's first word
+                expression_code(*node.children[0], code);
+                add(code, line, { opcode_word(VM_OP_STORE, node.address) });
+            }
+            add(code, line, { opcode_word(VM_OP_STOP, 0) });
+            break;
         default: break;
         }
+    }
+
+    // The parameters given their values, then the call (docs/language.md).
+    // When an argument calls a subroutine itself, that call could overwrite
+    // parameters already given: then every value waits on the stack first.
+    const Subroutine &call_code(const Node &call, Code &code)
+    {
+        unsigned index = *compilation.find_subroutine(call.name);
+        const Subroutine &called = compilation.signatures[index];
+        std::vector<unsigned> parameter_words;
+        for (const auto &parameter : called.parameters)
+            for (unsigned k = 0; k < parameter.size; ++k)
+                parameter_words.push_back(
+                  compilation.local_address(called.frame, parameter.offset + k));
+        unsigned line = call.position.line;
+        if (arguments_wait_on_stack(call)) {
+            for (const auto &word : call.children)
+                expression_code(*word, code);
+            for (size_t k = parameter_words.size(); k-- > 0;)
+                add(code, line, { opcode_word(VM_OP_STORE, parameter_words[k]) });
+        } else {
+            for (size_t k = 0; k < parameter_words.size(); ++k) {
+                expression_code(*call.children[k], code);
+                add(code, line, { opcode_word(VM_OP_STORE, parameter_words[k]) });
+            }
+        }
+        code.push_back({ { opcode_word(VM_OP_SUB_CALL, 0) }, line, static_cast<int>(index) });
+        return called;
+    }
+
+    static bool arguments_wait_on_stack(const Node &call)
+    {
+        for (const auto &word : call.children)
+            if (contains_call(*word))
+                return true;
+        return false;
     }
 
     void argument_code(const Node &argument, Code &code, unsigned line)
@@ -265,43 +319,68 @@ class Generator
         }
     }
 
-    // Stack words an expression needs (§11.3).
-    static unsigned expression_depth(const Node &node)
+    // Stack words an expression needs (§11.3), with `below` words already in
+    // use under it; records the calls it makes with the words under them.
+    unsigned expression_depth(const Node &node, unsigned below)
     {
         switch (node.kind) {
         case NodeKind::Immediate:
         case NodeKind::Load: return 1;
-        case NodeKind::Binary:
-            return expression_depth(*node.children[0]) + expression_depth(*node.children[1]);
+        case NodeKind::Binary: {
+            unsigned left = expression_depth(*node.children[0], below);
+            return left + expression_depth(*node.children[1], below + left);
+        }
         case NodeKind::Unary:
         case NodeKind::ArrayRead:
-        case NodeKind::ArrayWrite: return expression_depth(*node.children[0]);
+        case NodeKind::ArrayWrite: return expression_depth(*node.children[0], below);
+        case NodeKind::FunctionCall: return std::max(call_depth(node, below), 1u); // the value
         default: return 0;
         }
     }
 
-    static unsigned statement_depth(const Node &node)
+    unsigned call_depth(const Node &call, unsigned below)
+    {
+        bool waiting = arguments_wait_on_stack(call);
+        unsigned depth = 0;
+        for (size_t k = 0; k < call.children.size(); ++k) {
+            auto waiting_words = static_cast<unsigned>(waiting ? k : 0);
+            depth = std::max(
+              depth, waiting_words + expression_depth(*call.children[k], below + waiting_words));
+        }
+        record_call(call.name, below, call.position);
+        return depth;
+    }
+
+    void record_call(const std::string &name, unsigned below, SourcePosition where)
+    {
+        sections.back().calls.push_back({ *compilation.find_subroutine(name), below, where });
+    }
+
+    unsigned statement_depth(const Node &node, unsigned below)
     {
         switch (node.kind) {
         case NodeKind::Block:
         case NodeKind::Emit: {
             unsigned depth = 0;
             for (const auto &child : node.children)
-                depth = std::max(depth, statement_depth(*child));
+                depth = std::max(depth, statement_depth(*child, below));
             return depth;
         }
-        case NodeKind::Assignment:
-            return std::max(expression_depth(*node.children[0]),
-                            expression_depth(*node.children[1]));
+        case NodeKind::Assignment: {
+            // an indexed target's index is computed above the value
+            unsigned value = expression_depth(*node.children[1], below);
+            return std::max(expression_depth(*node.children[0], below + value), value);
+        }
         case NodeKind::If:
         case NodeKind::While: {
             const Node &condition = *node.children[0];
             unsigned depth = 0;
-            if (condition.kind == NodeKind::Binary)
-                depth = expression_depth(*condition.children[0]) +
-                        expression_depth(*condition.children[1]);
+            if (condition.kind == NodeKind::Binary) {
+                unsigned left = expression_depth(*condition.children[0], below);
+                depth = left + expression_depth(*condition.children[1], below + left);
+            }
             for (size_t i = 1; i < node.children.size(); ++i)
-                depth = std::max(depth, statement_depth(*node.children[i]));
+                depth = std::max(depth, statement_depth(*node.children[i], below));
             return depth;
         }
         case NodeKind::Call: {
@@ -309,15 +388,20 @@ class Generator
             auto size_words = static_cast<unsigned>(node.size_words.size());
             for (size_t i = 0; i < node.children.size(); ++i) {
                 const Node &argument = *node.children[i];
+                unsigned under = below + size_words + static_cast<unsigned>(i);
                 unsigned argument_depth = 1;
                 if (argument.address_kind == ArgumentAddress::Computed)
-                    argument_depth = std::max(expression_depth(*argument.children[0]), 2u);
+                    argument_depth = std::max(expression_depth(*argument.children[0], under), 2u);
                 else if (argument.address_kind == ArgumentAddress::Temporary)
-                    argument_depth = std::max(statement_depth(*argument.children[0]), 1u);
+                    argument_depth = std::max(statement_depth(*argument.children[0], under), 1u);
                 depth = std::max(depth, size_words + static_cast<unsigned>(i) + argument_depth);
             }
             return depth;
         }
+        case NodeKind::CallSub: record_call(node.name, below, node.position); return 0;
+        case NodeKind::FunctionCall: return call_depth(node, below);
+        case NodeKind::Return:
+            return node.children.empty() ? 0 : expression_depth(*node.children[0], below);
         default: return 0;
         }
     }

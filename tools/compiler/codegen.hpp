@@ -19,14 +19,23 @@ struct Instruction {
 
 using Code = std::vector<Instruction>;
 
+// A call of a subroutine, with the stack words in use under it.
+struct StackCall {
+    unsigned subroutine = 0; // index in definition order
+    unsigned words_below = 0;
+    SourcePosition position;
+};
+
 // The code of one event handler or subroutine before linking.
 struct Section {
     bool is_subroutine = false;
     unsigned event_id = 0;   // events
     unsigned subroutine = 0; // subroutines: index in definition order
+    SourcePosition start;    // its `onevent` or `sub` name
     Code code;
-    unsigned stack_depth = 0;     // deepest statement
-    std::vector<unsigned> called; // subroutines called from this section
+    unsigned stack_depth = 0;  // deepest statement, calls aside
+    SourcePosition deepest_at; // that statement
+    std::vector<StackCall> calls;
     unsigned last_line = 0;
 };
 
@@ -34,8 +43,8 @@ struct Section {
 // `onevent`/`sub` marker in source order.
 std::vector<Section> generate_code(const Node &program, const Compilation &compilation);
 
-// Throws the stack overflow error if a handler or subroutine may overflow
-// the target's stack.
+// Throws if subroutines call each other in a cycle (naming it), or if a
+// handler or subroutine may overflow the target's stack.
 void check_stack(const std::vector<Section> &sections, const Compilation &compilation);
 
 // Lays out the event table, handlers and subroutines (§10) into `result`.

@@ -44,6 +44,7 @@ Compilation::Compilation(const TargetDescription &target_description,
         address += named.size;
     }
     named_variable_count = variables.size();
+    frames.push_back({ "the code before the first onevent", { 1, 1 }, 0, {}, 0, {} });
     next_free_address = address;
     if (address > target.variables_size)
         throw CompileFailure("Broken target description: not enough room for internal variables");
@@ -93,10 +94,20 @@ std::optional<unsigned> Compilation::find_native(const std::string &name) const
 
 std::optional<unsigned> Compilation::find_subroutine(const std::string &name) const
 {
-    for (size_t i = 0; i < subroutines.size(); ++i)
-        if (subroutines[i] == name)
-            return static_cast<unsigned>(i);
-    return std::nullopt;
+    auto found = subroutine_index.find(name);
+    if (found == subroutine_index.end())
+        return std::nullopt;
+    return found->second;
+}
+
+const Subroutine &Compilation::called_subroutine(const std::string &name,
+                                                 SourcePosition where,
+                                                 const std::string &unknown) const
+{
+    std::optional<unsigned> index = find_subroutine(name);
+    if (!index)
+        fail(where, with_suggestion(unknown, name, subroutines));
+    return signatures[*index];
 }
 
 unsigned Compilation::allocate_temporary(unsigned size, SourcePosition where)
@@ -104,6 +115,7 @@ unsigned Compilation::allocate_temporary(unsigned size, SourcePosition where)
     if (next_free_address + temporaries_used + size > target.variables_size)
         fail(where, "Not enough free space to allocate this tempory variable");
     temporaries_used += size;
+    most_temporaries_used = std::max(most_temporaries_used, temporaries_used);
     return target.variables_size - temporaries_used;
 }
 

@@ -14,6 +14,53 @@
 namespace aseba
 {
 
+// The code of one section of the program (the code before the first
+// `onevent`, a handler or a subroutine) and the locals it holds at once.
+struct Frame {
+    std::string title;         // "onevent ir_sensors", "sub clamp", "the init code"
+    SourcePosition start;      // its `onevent`/`sub` name (line 1 for the init code)
+    unsigned size = 0;         // most words of locals, parameters and scratch in use at once
+    SourcePosition largest_at; // where that most was reached
+    unsigned base = 0;         // its place in the locals area, once laid out
+
+    // A call of a subroutine from this frame, with the words of this frame
+    // in use during the call (the callee's frame goes after them).
+    struct CallSite {
+        std::string callee;
+        unsigned words_in_use = 0;
+        SourcePosition position;
+    };
+    std::vector<CallSite> calls;
+};
+
+// What a call needs to know of a subroutine (docs/language.md).
+struct Subroutine {
+    std::string name;
+    SourcePosition position;
+    unsigned frame = 0;              // index in Compilation::frames
+    bool has_parameter_list = false; // written `sub name(...)`
+    struct Parameter {
+        std::string name;
+        unsigned size = 1;
+        unsigned offset = 0; // in the frame
+    };
+    std::vector<Parameter> parameters;
+    std::vector<SourcePosition> valued_returns; // `return e`
+    std::vector<SourcePosition> bare_returns;   // `return` in a subroutine with a list
+    bool returns_value() const
+    {
+        return !valued_returns.empty();
+    }
+};
+
+// A local variable or parameter, for listings.
+struct LocalVariable {
+    std::string name;
+    unsigned frame = 0;
+    unsigned offset = 0; // in the frame
+    unsigned size = 1;
+};
+
 struct Compilation {
     const TargetDescription &target;
     const CommonDefinitions &definitions;
@@ -23,9 +70,23 @@ struct Compilation {
     unsigned next_free_address = 0;           // first word after the user variables
     std::map<std::string, int64_t> constants; // global and source constants
     unsigned temporaries_used = 0;            // words taken from the end of memory
+    unsigned most_temporaries_used = 0;       // the most at once, for the final memory check
 
     std::vector<std::string> subroutines; // in definition order
+    std::map<std::string, unsigned> subroutine_index;
+    std::vector<Subroutine> signatures; // the same subroutines, with their parameters
     std::vector<unsigned> implemented_events;
+
+    std::vector<Frame> frames; // in source order: the init code, then each onevent and sub
+    std::vector<LocalVariable> locals;
+    unsigned locals_start = 0; // first word of the locals area: after every global
+    unsigned locals_size = 0;
+
+    // The absolute address of `offset` in `frame`, once the area is laid out.
+    unsigned local_address(unsigned frame, unsigned offset) const
+    {
+        return locals_start + frames[frame].base + offset;
+    }
 
     Compilation(const TargetDescription &target_description,
                 const CommonDefinitions &common_definitions);
@@ -36,6 +97,10 @@ struct Compilation {
     std::optional<unsigned> find_local_event(const std::string &name) const;
     std::optional<unsigned> find_native(const std::string &name) const;
     std::optional<unsigned> find_subroutine(const std::string &name) const;
+    // The subroutine `name`; else throws `unknown` at `where`, with a suggestion.
+    const Subroutine &called_subroutine(const std::string &name,
+                                        SourcePosition where,
+                                        const std::string &unknown) const;
 
     // The address of `size` fresh words at the end of memory (language.md §7).
     unsigned allocate_temporary(unsigned size, SourcePosition where);
@@ -57,6 +122,20 @@ NodePointer parse_program(const std::vector<struct Token> &tokens, Compilation &
 // Throws the bounds error of language.md §6 if a constant index or slice of
 // a Memory node leaves its variable (the end is checked first).
 void check_constant_index(const Node &memory);
+
+// Checks the calls of subroutines with parameters and their returns, lays
+// out the locals area (docs/language.md) and makes every address absolute.
+void allocate_locals(Node &program, Compilation &compilation);
+
+// Throws if the globals, the locals area and the scratch words at the end of
+// memory do not fit in the target's variables together.
+void check_memory(const Compilation &compilation);
+
+// Whether `node` calls a subroutine in an expression (or is such a call).
+bool contains_call(const Node &node);
+
+// Whether the variable called `name` appears in `expression`.
+bool mentions(const Node &expression, const std::string &name);
 
 // Checks vector sizes (language.md §6) of the whole program.
 void check_sizes(Node &program);

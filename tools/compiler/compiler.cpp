@@ -16,18 +16,32 @@ CompileResult compile(std::string_view source,
 {
     CompileResult result;
     try {
+        if (source.size() > MAX_SOURCE_BYTES)
+            throw CompileFailure("This program is " + std::to_string(source.size()) +
+                                 " bytes long; the compiler takes at most " +
+                                 std::to_string(MAX_SOURCE_BYTES) + " bytes (1 MiB)");
         Compilation compilation(target, definitions);
         std::vector<Token> tokens = tokenize(source);
         NodePointer program = parse_program(tokens, compilation);
+        allocate_locals(*program, compilation);
         check_sizes(*program);
         expand_program(*program, compilation);
         check_types(*program, compilation);
+        check_memory(compilation);
         program = optimize(std::move(program));
         std::vector<Section> sections = generate_code(*program, compilation);
         check_stack(sections, compilation);
         link(std::move(sections), compilation, result);
         result.variables = compilation.variables;
-        result.allocated_variables = static_cast<uint16_t>(compilation.next_free_address);
+        for (const LocalVariable &local : compilation.locals)
+            result.locals.push_back(
+              { local.name,
+                compilation.frames[local.frame].title,
+                static_cast<uint16_t>(compilation.local_address(local.frame, local.offset)),
+                static_cast<uint16_t>(local.size) });
+        result.locals_words = static_cast<uint16_t>(compilation.locals_size);
+        result.allocated_variables =
+          static_cast<uint16_t>(compilation.locals_start + compilation.locals_size);
         result.ok = true;
     } catch (const CompileFailure &failure) {
         result = CompileResult{};

@@ -14,6 +14,22 @@ namespace
 
 constexpr size_t SHOWN_LINE_LIMIT = 120; // longer source lines are cut around the error
 constexpr size_t SHOWN_CONTEXT = 50;     // characters kept on each side of the column
+constexpr char32_t REPLACEMENT_CHARACTER = 0xFFFD;
+
+// Control characters would act on the terminal: each shows as one mark,
+// so that columns still line up.
+std::u32string printable(std::u32string text)
+{
+    for (char32_t &c : text)
+        if ((c < 0x20 && c != '\t') || (c >= 0x7F && c < 0xA0))
+            c = REPLACEMENT_CHARACTER;
+    return text;
+}
+
+std::string printable(std::string_view text)
+{
+    return encode_utf8(printable(decode_utf8(text)));
+}
 
 } // namespace
 
@@ -23,14 +39,15 @@ std::string format_error(std::string_view file_name,
                          unsigned line_offset,
                          unsigned column_offset)
 {
-    std::string out(file_name);
+    std::string out = printable(file_name);
+    std::string message = printable(error.message);
     if (!error.has_position)
-        return out + ": error: " + error.message + "\n";
+        return out + ": error: " + message + "\n";
     unsigned line = error.position.line;
     unsigned column = error.position.column;
     unsigned shown_column = column + (line == 1 ? column_offset : 0);
     out += ":" + std::to_string(line + line_offset) + ":" + std::to_string(shown_column) +
-           ": error: " + error.message + "\n";
+           ": error: " + message + "\n";
 
     // find the source line (LF ends lines, as the compiler counts them)
     size_t start = 0;
@@ -45,7 +62,7 @@ std::string format_error(std::string_view file_name,
     std::string_view text = source.substr(start, end == std::string_view::npos ? end : end - start);
     if (!text.empty() && text.back() == '\r')
         text.remove_suffix(1);
-    std::u32string characters = decode_utf8(text);
+    std::u32string characters = printable(decode_utf8(text));
     // very long lines are shown around the column only
     size_t first = 0;
     size_t last = characters.size();

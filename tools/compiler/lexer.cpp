@@ -5,6 +5,8 @@
 
 #include "lexer.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <locale>
 #include <map>
 
@@ -88,16 +90,73 @@ int digit_value(char32_t c)
     return -1;
 }
 
-std::string out_of_range_message(int64_t value)
+// The byte offset of the first byte of `text` that is not valid UTF-8
+// (overlong forms, surrogates and code points above U+10FFFF included), or
+// text.size() if all is valid.
+size_t first_invalid_utf8(std::string_view text)
 {
-    return "Integer value " + std::to_string(value) + " out of [-32768;32767] range";
+    size_t i = 0;
+    while (i < text.size()) {
+        auto byte = static_cast<unsigned char>(text[i]);
+        if (byte < 0x80) {
+            ++i;
+            continue;
+        }
+        unsigned length = (byte >> 5) == 0x6    ? 2
+                          : (byte >> 4) == 0xE  ? 3
+                          : (byte >> 3) == 0x1E ? 4
+                                                : 0;
+        if (length == 0 || i + length > text.size())
+            return i;
+        char32_t code = byte & (0x7F >> length);
+        for (unsigned k = 1; k < length; ++k) {
+            auto continuation = static_cast<unsigned char>(text[i + k]);
+            if ((continuation & 0xC0) != 0x80)
+                return i;
+            code = (code << 6) | (continuation & 0x3F);
+        }
+        static const char32_t smallest[] = { 0, 0, 0x80, 0x800, 0x10000 };
+        if (code < smallest[length] || (code >= 0xD800 && code <= 0xDFFF) || code > 0x10FFFF)
+            return i;
+        i += length;
+    }
+    return i;
+}
+
+// Refuses text that is not UTF-8, at the line and column of the bad byte.
+void check_utf8(std::string_view text)
+{
+    size_t bad = first_invalid_utf8(text);
+    if (bad == text.size())
+        return;
+    size_t line_start = text.rfind('\n', bad == 0 ? 0 : bad - 1);
+    line_start = line_start == std::string_view::npos || bad == 0 ? 0 : line_start + 1;
+    SourcePosition where;
+    where.line = 1 + static_cast<unsigned>(std::count(text.begin(), text.begin() + bad, '\n'));
+    where.column =
+      1 + static_cast<unsigned>(decode_utf8(text.substr(line_start, bad - line_start)).size());
+    char hex[8];
+    snprintf(hex, sizeof hex, "%02x", static_cast<unsigned char>(text[bad]));
+    fail(where,
+         std::string("Invalid UTF-8 byte 0x") + hex + ": the program must be saved as UTF-8 text");
+}
+
+// A literal out of range, named as it is written (with its minus sign), and
+// for a hexadecimal or binary spelling the `value` it stands for.
+std::string out_of_range_message(const std::string &spelling, int64_t value, bool negated)
+{
+    std::string written = (negated ? "-" : "") + spelling;
+    bool decimal = spelling.size() < 2 || (spelling[1] != 'x' && spelling[1] != 'b');
+    if (!decimal && value < SATURATED_LITERAL)
+        written += " (" + std::to_string(value) + ")";
+    return "Integer value " + written + " out of [-32768;32767] range";
 }
 
 class Lexer
 {
   public:
     explicit Lexer(std::string_view source)
-      : text(decode_utf8(source))
+      : text((check_utf8(source), decode_utf8(source)))
     {
     }
 
@@ -248,7 +307,7 @@ class Lexer
                 value = SATURATED_LITERAL;
         }
         if (value >= LITERAL_LIMIT)
-            fail(position, out_of_range_message(value));
+            fail(position, out_of_range_message(encode_utf8(word), value, false));
         if (base != 10 && value >= INT16_LIMIT)
             value -= LITERAL_LIMIT;
         return static_cast<int32_t>(value);
@@ -317,6 +376,12 @@ class Lexer
 };
 
 } // namespace
+
+std::string literal_range_message(const Token &literal, bool negated)
+{
+    int64_t value = literal.value;
+    return out_of_range_message(literal.text, negated ? -value : value, negated);
+}
 
 const char *token_type_name(TokenType type)
 {

@@ -37,7 +37,7 @@ namespace aseba
     X(ONEVENT, "onevent keyword")                                                                  \
     X(ABS, "abs keyword")                                                                          \
     X(RETURN, "return keyword")                                                                    \
-    X(IDENTIFIER, "string")                                                                        \
+    X(IDENTIFIER, "identifier")                                                                    \
     X(INTEGER, "integer")                                                                          \
     X(PAREN_OPEN, "( (open parenthesis)")                                                          \
     X(PAREN_CLOSE, ") (close parenthesis)")                                                        \
@@ -95,11 +95,16 @@ struct Token {
 // The name of a token type as the reference prints it in messages.
 const char *token_type_name(TokenType type);
 
+// The error for an integer literal out of the 16-bit range, naming it as
+// written (`negated`: with a minus sign folded into it).
+std::string literal_range_message(const Token &literal, bool negated);
+
 // Splits `source` (UTF-8) into tokens ending with END_OF_STREAM; throws
 // CompileFailure on a lexical error.
 std::vector<Token> tokenize(std::string_view source);
 
-// Decodes UTF-8 into code points; invalid bytes are taken as Latin-1.
+// Decodes UTF-8 into code points; invalid bytes are taken as Latin-1 (the
+// lexer refuses them first; this is for showing text).
 std::u32string decode_utf8(std::string_view text);
 
 // Encodes code points as UTF-8.

@@ -6,6 +6,7 @@ aseba_compiler_SOURCES := \
     tools/compiler/lexer.cpp \
     tools/compiler/parser.cpp \
     tools/compiler/compilation.cpp \
+    tools/compiler/locals.cpp \
     tools/compiler/analysis.cpp \
     tools/compiler/optimizer.cpp \
     tools/compiler/codegen.cpp \

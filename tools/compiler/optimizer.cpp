@@ -99,15 +99,17 @@ NodePointer optimize_binary(NodePointer node)
         operation == VM_BINARY_DIV)
         fail(node->position, "Division by zero");
 
-    // neutral elements: keep the other operand
+    // neutral elements: keep the other operand; absorbing ones drop an
+    // operand, but never a call of a subroutine (docs/language.md)
     auto keep = [&node](size_t index) { return std::move(node->children[index]); };
+    bool may_absorb = !contains_call(left) && !contains_call(right);
     switch (operation) {
     case VM_BINARY_MULT:
         if (is_immediate(right, 1))
             return keep(0);
         if (is_immediate(left, 1))
             return keep(1);
-        if (is_immediate(right, 0) || is_immediate(left, 0))
+        if (may_absorb && (is_immediate(right, 0) || is_immediate(left, 0)))
             return make_immediate(0, node->position);
         break;
     case VM_BINARY_DIV:
@@ -129,7 +131,7 @@ NodePointer optimize_binary(NodePointer node)
             return keep(0);
         if (is_immediate(left, 0))
             return keep(1);
-        if (is_immediate(right, -1) || is_immediate(left, -1))
+        if (may_absorb && (is_immediate(right, -1) || is_immediate(left, -1)))
             return make_immediate(-1, node->position);
         break;
     case VM_BINARY_BIT_AND:
@@ -137,7 +139,7 @@ NodePointer optimize_binary(NodePointer node)
             return keep(0);
         if (is_immediate(left, -1))
             return keep(1);
-        if (is_immediate(right, 0) || is_immediate(left, 0))
+        if (may_absorb && (is_immediate(right, 0) || is_immediate(left, 0)))
             return make_immediate(0, node->position);
         break;
     case VM_BINARY_OR:
@@ -145,12 +147,12 @@ NodePointer optimize_binary(NodePointer node)
             return keep(0);
         if (is_immediate(left, 0))
             return keep(1);
-        if (is_immediate(right) || is_immediate(left))
+        if (may_absorb && (is_immediate(right) || is_immediate(left)))
             return make_immediate(1, node->position);
         break;
     case VM_BINARY_AND:
         if (is_immediate(right, 0) || is_immediate(left, 0))
-            return make_immediate(0, node->position);
+            return may_absorb ? make_immediate(0, node->position) : std::move(node);
         if (is_immediate(right))
             return keep(0);
         if (is_immediate(left))
@@ -342,6 +344,8 @@ NodePointer optimize(NodePointer node)
                 child = optimize(std::move(child));
         return node;
     case NodeKind::Tuple:
+    case NodeKind::FunctionCall:
+    case NodeKind::Return:
         for (auto &child : node->children)
             child = optimize(std::move(child));
         return node;

@@ -2,10 +2,9 @@
 
 #include "program_file.hpp"
 
+#include <filesystem>
 #include <fstream>
 #include <iostream>
-#include <iterator>
-#include <sstream>
 #include <stdexcept>
 
 #include "aesl.hpp"
@@ -17,16 +16,33 @@ namespace aseba
 namespace
 {
 
+// At most MAX_PROGRAM_FILE_BYTES of `input`: a device or a pipe that never
+// ends (/dev/zero) is refused rather than read without bound.
+std::string read_bounded(std::istream &input, const std::string &name)
+{
+    std::string text(MAX_PROGRAM_FILE_BYTES + 1, '\0');
+    input.read(text.data(), static_cast<std::streamsize>(text.size()));
+    if (input.bad())
+        throw std::runtime_error(name + ": error: cannot read the file");
+    text.resize(static_cast<size_t>(input.gcount()));
+    if (text.size() > MAX_PROGRAM_FILE_BYTES)
+        throw std::runtime_error(name + ": error: the file is larger than " +
+                                 std::to_string(MAX_PROGRAM_FILE_BYTES / 1024 / 1024) +
+                                 " MiB, the most a program file may be");
+    return text;
+}
+
 std::string read_whole(const std::string &path)
 {
     if (path == "-")
-        return std::string(std::istreambuf_iterator<char>(std::cin), {});
+        return read_bounded(std::cin, "<stdin>");
+    std::error_code error;
+    if (std::filesystem::is_directory(path, error))
+        throw std::runtime_error(path + ": error: this is a folder, not a program file");
     std::ifstream file(path, std::ios::binary);
     if (!file)
         throw std::runtime_error(path + ": error: cannot read the file");
-    std::ostringstream text;
-    text << file.rdbuf();
-    return text.str();
+    return read_bounded(file, path);
 }
 
 bool is_project(const std::string &path)
@@ -61,18 +77,22 @@ ProgramFile read_program_file(const std::string &path, const std::string &node)
             return program;
         }
     }
-    throw std::runtime_error(program.file_name + ": error: " +
-                             (node.empty() ? "the project has no node"
-                                           : "the project has no node named " + node));
+    throw std::runtime_error(
+      program.file_name + ": error: " +
+      (node.empty() ? "the project has no node" : "the project has no node named " + node));
 }
 
-CompileResult compile_program_file(const ProgramFile &program, const TargetDescription &target,
+CompileResult compile_program_file(const ProgramFile &program,
+                                   const TargetDescription &target,
                                    std::string &error_text)
 {
     CompileResult result = compile(program.source, target, program.definitions);
     if (!result.ok)
-        error_text = format_error(program.file_name, program.source, result.error,
-                                  program.line_offset, program.column_offset);
+        error_text = format_error(program.file_name,
+                                  program.source,
+                                  result.error,
+                                  program.line_offset,
+                                  program.column_offset);
     return result;
 }
 

@@ -26,9 +26,11 @@ enum class NodeKind {
     Call,  // native_id; children: CallArgument each
     CallArgument, // address_kind; children: filling code (Block) or index expression
     CallSub,      // name
-    Return,
-    EventStart, // event_id: the following statements handle this event
-    SubStart,   // name: the following statements form this subroutine
+    FunctionCall, // name; children: arguments (scalar words after expansion); a statement
+                  // or an expression (the subroutine's value)
+    Return,       // children: the value, if any; address: where the value goes
+    EventStart,   // event_id: the following statements handle this event
+    SubStart,     // name: the following statements form this subroutine
     // expressions
     Binary,    // operation; children: left, right
     Unary,     // operation; children: operand
@@ -88,9 +90,12 @@ struct Node {
     ArgumentAddress address_kind = ArgumentAddress::Direct;
     unsigned indexed_address = 0;     // CallArgument Computed: base of the indexed variable
     std::vector<unsigned> size_words; // Call: sizes pushed before the addresses (§8.7)
-    unsigned height = 1;
-    unsigned end_line = 0; // If: line of its `end` (the reference's line after the if) //
-                           // expressions: levels below and including this one
+    int frame = -1; // >= 0: `address` is an offset in the locals of that frame (handler or
+                    // subroutine), made absolute once the locals area is laid out
+    bool has_reserved_temporary = false; // Assignment: its vector temporary is at `address`
+    bool is_statement = false;           // FunctionCall: a statement (any value dropped)
+    unsigned height = 1;                 // expressions: levels below and including this one
+    unsigned end_line = 0; // If: line of its `end` (the reference's line after the if)
 
     Node(NodeKind node_kind, SourcePosition where)
       : kind(node_kind)

@@ -86,7 +86,7 @@ struct EnkiWorld::RobotState {
     host_world table;
     EnkiWorld *world = nullptr;
     size_t index = 0;
-    std::array<bool, HAL_PIN_COUNT> output{};
+    std::array<bool, EPUCK_PIN_COUNT> output{};
     // Per motor: the phase index last driven, and steps since the last
     // Enki step (+ forward).
     int phase[2] = { 0, 0 };
@@ -126,27 +126,27 @@ double clamp_adc(double value)
 uint16_t world_adc_read(void *context, uint8_t channel, uint64_t)
 {
     RobotState &state = state_of(context);
-    if (channel >= HAL_ADC_PROXIMITY_0) {
-        unsigned sensor = channel - HAL_ADC_PROXIMITY_0;
-        hal_pin emitter = hal_pin(HAL_PIN_IR_PULSE_0_4 + sensor % 4);
+    if (channel >= EPUCK_ADC_PROXIMITY_0) {
+        unsigned sensor = channel - EPUCK_ADC_PROXIMITY_0;
+        epuck_pin emitter = epuck_pin(EPUCK_PIN_IR_PULSE_0_4 + sensor % 4);
         return state.output[emitter] ? state.proximity_lit[sensor] : HOST_FLAT_PROXIMITY;
     }
-    if (channel >= HAL_ADC_ACCELEROMETER_X && channel <= HAL_ADC_ACCELEROMETER_Z)
-        return state.acceleration[channel - HAL_ADC_ACCELEROMETER_X];
-    if (channel >= HAL_ADC_MICROPHONE_0 && channel < HAL_ADC_ACCELEROMETER_X)
+    if (channel >= EPUCK_ADC_ACCELEROMETER_X && channel <= EPUCK_ADC_ACCELEROMETER_Z)
+        return state.acceleration[channel - EPUCK_ADC_ACCELEROMETER_X];
+    if (channel >= EPUCK_ADC_MICROPHONE_0 && channel < EPUCK_ADC_ACCELEROMETER_X)
         return HOST_FLAT_MICROPHONE;
     return HOST_FLAT_OTHER_INPUT;
 }
 
-bool world_pin_read(void *, hal_pin pin, uint64_t)
+bool world_pin_read(void *, epuck_pin pin, uint64_t)
 {
     // Selector 0, battery fine, remote silent, camera lines idle.
-    return pin == HAL_PIN_BATTERY_LOW || pin == HAL_PIN_REMOTE;
+    return pin == EPUCK_PIN_BATTERY_LOW || pin == EPUCK_PIN_REMOTE;
 }
 
 // A motor's phase lines changed: when they show the next pattern of the
 // sequence, or the one before, the motor made a step.
-void phase_written(RobotState &state, Motor motor, hal_pin first)
+void phase_written(RobotState &state, Motor motor, epuck_pin first)
 {
     uint8_t pattern = 0;
     for (int line = 0; line < phase_count; line++)
@@ -163,14 +163,14 @@ void phase_written(RobotState &state, Motor motor, hal_pin first)
     state.steps[motor] += motor == left_motor ? -up : up;
 }
 
-void world_pin_written(void *context, hal_pin pin, bool high, uint64_t)
+void world_pin_written(void *context, epuck_pin pin, bool high, uint64_t)
 {
     RobotState &state = state_of(context);
     state.output[pin] = high;
-    if (pin >= HAL_PIN_MOTOR_LEFT_A && pin <= HAL_PIN_MOTOR_LEFT_D)
-        phase_written(state, left_motor, HAL_PIN_MOTOR_LEFT_A);
-    else if (pin >= HAL_PIN_MOTOR_RIGHT_A && pin <= HAL_PIN_MOTOR_RIGHT_D)
-        phase_written(state, right_motor, HAL_PIN_MOTOR_RIGHT_A);
+    if (pin >= EPUCK_PIN_MOTOR_LEFT_A && pin <= EPUCK_PIN_MOTOR_LEFT_D)
+        phase_written(state, left_motor, EPUCK_PIN_MOTOR_LEFT_A);
+    else if (pin >= EPUCK_PIN_MOTOR_RIGHT_A && pin <= EPUCK_PIN_MOTOR_RIGHT_D)
+        phase_written(state, right_motor, EPUCK_PIN_MOTOR_RIGHT_A);
 }
 
 bool world_i2c_write(void *context,
@@ -180,7 +180,7 @@ bool world_i2c_write(void *context,
                      uint16_t count)
 {
     RobotState &state = state_of(context);
-    if (device != HAL_I2C_CAMERA_ADDRESS)
+    if (device != EPUCK_I2C_CAMERA_ADDRESS)
         return false;
     for (uint16_t i = 0; i < count; i++)
         state.camera_registers[uint8_t(reg + i)] = bytes[i];
@@ -190,7 +190,7 @@ bool world_i2c_write(void *context,
 bool world_i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, uint16_t count)
 {
     RobotState &state = state_of(context);
-    if (device != HAL_I2C_CAMERA_ADDRESS)
+    if (device != EPUCK_I2C_CAMERA_ADDRESS)
         return false;
     state.camera_registers[0] = camera_id_high;
     state.camera_registers[1] = camera_id_low;

@@ -311,9 +311,9 @@ std::vector<aseba::arena::FeedRobot> feed_robots(aseba::arena::ArenaSimulation &
         robot.node_id = arena.robots[i].node_id;
         robot.pose = simulation.world().pose(i);
         for (size_t led = 0; led < robot.ring.size(); led++)
-            robot.ring[led] = board.outputs[HAL_PIN_LED_0 + led];
-        robot.body = board.outputs[HAL_PIN_BODY_LED];
-        robot.front = board.outputs[HAL_PIN_FRONT_LED];
+            robot.ring[led] = board.outputs[EPUCK_PIN_LED_0 + led];
+        robot.body = board.outputs[EPUCK_PIN_BODY_LED];
+        robot.front = board.outputs[EPUCK_PIN_FRONT_LED];
         robots.push_back(robot);
     }
     return robots;

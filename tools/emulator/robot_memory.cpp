@@ -36,14 +36,14 @@ flash::ProgramImage read_application_file(const std::string &path)
 void install_application(hal_board &board, const flash::ProgramImage &image)
 {
     for (const flash::Page &page : flash::make_pages(image)) {
-        std::array<uint32_t, HAL_FLASH_ROW_INSTRUCTIONS> row;
+        std::array<uint32_t, BOOT_PAGE_WORDS> row;
         for (size_t i = 0; i < row.size(); i++) {
             const uint8_t *bytes = &page.bytes[i * BOOT_BYTES_PER_INSTRUCTION];
             row[i] = uint32_t(bytes[0]) | uint32_t(bytes[1]) << 8 | uint32_t(bytes[2]) << 16;
         }
-        uint32_t address = uint32_t(page.number) * HAL_FLASH_ROW_SPAN;
-        if (!hal_flash_erase_row(&board, address) ||
-            !hal_flash_write_row(&board, address, row.data()))
+        uint32_t address = uint32_t(page.number) * BOOT_PAGE_SPAN;
+        if (!hal_flash_erase(&board, address) ||
+            !hal_flash_program(&board, address, row.data(), BOOT_PAGE_WORDS))
             throw std::runtime_error("the simulated flash refused the row at PC " +
                                      std::to_string(address));
     }
@@ -51,7 +51,7 @@ void install_application(hal_board &board, const flash::ProgramImage &image)
 
 void store_program(hal_board &board, const std::vector<uint16_t> &bytecode)
 {
-    if (bytecode.size() > EPUCK_STORE_BYTECODE_MAX_WORDS ||
+    if (bytecode.size() > EPUCK_BYTECODE_WORDS ||
         !epuck_store_save_bytecode(&board, bytecode.data(), uint16_t(bytecode.size())))
         throw std::runtime_error("the program (" + std::to_string(bytecode.size()) +
                                  " words) does not fit in the bytecode store");

@@ -7,7 +7,7 @@
 
 extern "C" {
 #include "bootloader/boot_application.h"
-#include "bootloader/flash_layout.h"
+#include "hal/dspic30/dspic30_flash_layout.h"
 }
 
 namespace aseba::flash

@@ -1,22 +1,23 @@
-// The Aseba bootloader image's program on the dsPIC30F6014A (linked with
+// The Aseba bootloader image's entry point on the dsPIC30F6014A (linked with
 // linker/epuck-bootloader.gld): the chip's reset vector leads here, directly
 // or through the factory Tiny Bootloader's trampoline. It starts the clock
-// and the link, answers the Aseba bootloader messages (bootloader.h) as the
-// node id the application will use, and then jumps to the application's
-// entry.
+// and the link, answers the Aseba bootloader messages (bootloader/
+// bootloader.h) as the node id the application will use, and then jumps to
+// the application's entry.
 //
-// Its own interrupts (the millisecond clock, UART1 reception) come through
-// the alternate vector table (INTCON2.ALTIVT = 1), which its linker script
-// fills; the primary table leads to the application's GOTO table. Before the
-// jump every interrupt source is off and the primary table selected, as
-// after a reset, so the application's start-up finds the chip as it expects.
-// (The only mutable file-scope state of the bootloader image.)
+// Its own interrupts (the millisecond clock, UART1 reception and
+// transmission) come through the alternate vector table (INTCON2.ALTIVT =
+// 1), which its linker script fills with the handlers below; the primary
+// table leads to the application's GOTO table. Before the jump every
+// interrupt source is off and the primary table selected, as after a reset,
+// so the application's start-up finds the chip as it expects. The only
+// mutable file-scope state of the bootloader image.
 
 #include "bootloader/bootloader.h"
 #include "bootloader/bytecode_store.h"
 #include "drivers/epuck/epuck_selector.h"
-#include "hal/dspic30/dspic30_board.h"
-#include "hal/dspic30/dspic30_registers.h"
+#include "dspic30_board.h"
+#include "dspic30_registers.h"
 
 static hal_board board;
 static bootloader loader;
@@ -58,12 +59,7 @@ static void start_application(uint32_t entry)
 
 int main(void)
 {
-    // Some robots need a second reset after power-on (§1.8, as both Aseba
-    // versions do).
-    if (dspic30_read(DSPIC30_RCON) & DSPIC30_RCON_POR) {
-        dspic30_clear_bits(DSPIC30_RCON, DSPIC30_RCON_POR);
-        hal_reset(&board);
-    }
+    dspic30_reset_again_after_power_on(&board);
     start_board();
     boot_start(&loader, &board, epuck_store_node_id(&board, epuck_selector_read(&board)));
     while (boot_poll(&loader) != BOOT_START_APPLICATION)
@@ -80,4 +76,9 @@ void DSPIC30_INTERRUPT _T1Interrupt(void)
 void DSPIC30_INTERRUPT _U1RXInterrupt(void)
 {
     dspic30_on_uart1_receive(&board);
+}
+
+void DSPIC30_INTERRUPT _U1TXInterrupt(void)
+{
+    dspic30_on_uart1_transmit(&board);
 }

@@ -1,31 +1,28 @@
-// The dsPIC application's entry point: the single static board and
-// firmware, and the interrupt handlers, each forwarding to the board's
-// handler (linker/epuck-app.gld puts them in the application's GOTO table,
-// where the bootloader image's vectors lead).
-// (The only mutable file-scope state of the firmware image.)
+// The e-puck application image's entry point on the dsPIC30F6014A: the
+// single static board, robot devices and firmware, and the interrupt
+// handlers, each forwarding to the board's handler (linker/epuck-app.gld
+// puts them in the application's GOTO table, where the bootloader image's
+// vectors lead). The only mutable file-scope state of the application image.
 
 #include "bootloader/bytecode_store.h"
+#include "drivers/epuck/epuck_devices.h"
 #include "drivers/epuck/epuck_selector.h"
 #include "dspic30_board.h"
-#include "dspic30_registers.h"
+#include "dspic30_registers.h" // DSPIC30_INTERRUPT
 #include "firmware/epuck_firmware.h"
 
 static hal_board board;
+static epuck_robot devices;
 static epuck_firmware firmware;
 
 int main(void)
 {
-    // Some robots need a second reset after power-on (§1.8, as both Aseba
-    // versions do).
-    if (dspic30_read(DSPIC30_RCON) & DSPIC30_RCON_POR) {
-        dspic30_clear_bits(DSPIC30_RCON, DSPIC30_RCON_POR);
-        hal_reset(&board);
-    }
+    dspic30_reset_again_after_power_on(&board);
     dspic30_board_init(&board);
     // The node id the bootloader answered as: the stored settings' or the
     // selector's.
     epuck_firmware_init(
-      &firmware, &board, epuck_store_node_id(&board, epuck_selector_read(&board)));
+      &firmware, &board, &devices, epuck_store_node_id(&board, epuck_selector_read(&board)));
     for (;;) {
         if (!epuck_firmware_poll(&firmware))
             hal_idle(&board);
@@ -43,24 +40,29 @@ void DSPIC30_INTERRUPT _U1RXInterrupt(void)
     dspic30_on_uart1_receive(&board);
 }
 
+void DSPIC30_INTERRUPT _U1TXInterrupt(void)
+{
+    dspic30_on_uart1_transmit(&board);
+}
+
 void DSPIC30_INTERRUPT _T2Interrupt(void)
 {
-    dspic30_on_timer(&board, HAL_TIMER_AGENDA);
+    dspic30_on_timer(&board, EPUCK_TIMER_AGENDA);
 }
 
 void DSPIC30_INTERRUPT _T3Interrupt(void)
 {
-    dspic30_on_timer(&board, HAL_TIMER_SPARE);
+    dspic30_on_timer(&board, EPUCK_TIMER_SPARE);
 }
 
 void DSPIC30_INTERRUPT _T4Interrupt(void)
 {
-    dspic30_on_timer(&board, HAL_TIMER_MOTOR_RIGHT);
+    dspic30_on_timer(&board, EPUCK_TIMER_MOTOR_RIGHT);
 }
 
 void DSPIC30_INTERRUPT _T5Interrupt(void)
 {
-    dspic30_on_timer(&board, HAL_TIMER_MOTOR_LEFT);
+    dspic30_on_timer(&board, EPUCK_TIMER_MOTOR_LEFT);
 }
 
 void DSPIC30_INTERRUPT _ADCInterrupt(void)

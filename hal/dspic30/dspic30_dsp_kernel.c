@@ -1,7 +1,8 @@
 // The inner loop of dsp.fir, dsp.corr and dsp.conv on the dsPIC30F's DSP
-// engine: the dsPIC30F build compiles this file instead of
-// nat_dsp_kernel.c (hal/dspic30/module.mk), and both compute the same
-// function, bit for bit (README-dsp-dspic30.md gives the reasoning).
+// engine, the dsPIC port's chip-accelerated kernel: the dsPIC30F build
+// compiles this file instead of native_functions/nat_dsp_kernel.c
+// (hal/dspic30/module.mk), and both compute the same function, bit for bit
+// (README-dsp.md gives the reasoning).
 //
 // The portable loop multiplies 16 x 16 bits into 32, then adds into 64
 // bits: on a 16-bit chip, several instructions per term. Here each term is
@@ -15,21 +16,18 @@
 // __builtin_clr, __builtin_mac, __builtin_sftac, __builtin_sac); facts
 // marked ⚠ come from memory of the dsPIC30F Family Reference Manual and
 // were not checked against it. tests/native_functions_dsp/ compiles this
-// file on the host against a model of those builtins and compares it with
-// the portable loop.
+// file on the host against a model of those builtins (defining
+// NAT_DSP_SIMULATED_DSP_ENGINE and including the model before this file)
+// and compares it with the portable loop.
 
 #include <stddef.h>
 
 #include "nat_dsp_internal.h"
 
-#ifdef NAT_DSP_SIMULATED_DSP_ENGINE
-// Host test build: C models of CORCON, accumulator A and the builtins.
-#include "tests/native_functions_dsp/dspic30_dsp_engine_model.h"
-#else
-// CORCON by its data-space address (hardware fact sheet), as hal/dspic30
-// reaches SFRs.
-#define CORCON_ADDRESS          0x0044u
-#define CORCON                  (*(volatile uint16_t *)CORCON_ADDRESS)
+#ifndef NAT_DSP_SIMULATED_DSP_ENGINE
+#include "dspic30_registers.h"
+// CORCON by its data-space address, as the rest of the port reaches SFRs.
+#define CORCON (*(volatile uint16_t *)DSPIC30_CORCON)
 // Accumulator A as a C variable, the way the XC16 guide's DSP builtin
 // examples declare it (`int` is 16 bits with XC16).
 #define DSP_ACCUMULATOR_A(name) volatile register int name asm("A")

@@ -1,0 +1,17 @@
+// The e-puck application image's interrupt handlers, which only the vector
+// table reaches on the chip, kept for the size measure through a volatile
+// table (scripts/cross-check.sh; registers: simulated_registers.c).
+
+void _T1Interrupt(void);
+void _U1RXInterrupt(void);
+void _U1TXInterrupt(void);
+void _T2Interrupt(void);
+void _T3Interrupt(void);
+void _T4Interrupt(void);
+void _T5Interrupt(void);
+void _ADCInterrupt(void);
+void _INT0Interrupt(void);
+void (*volatile const application_handlers[])(void) = {
+    _T1Interrupt, _U1RXInterrupt, _U1TXInterrupt, _T2Interrupt,   _T3Interrupt,
+    _T4Interrupt, _T5Interrupt,   _ADCInterrupt,  _INT0Interrupt,
+};

@@ -1,0 +1,149 @@
+/* The native tables and node descriptions of the host tests, in C for the
+ * harness image: tests/support/vm_harness.cpp's twelve test natives and
+ * tests/node/node_harness.cpp's `tiny` and `refnode` presets, with the same
+ * names and semantics. The host checks that each preset's description has
+ * the fingerprint of the host's before a trace runs (remote_node.cpp); the
+ * natives' behaviour is what the VM program tests expect of them. */
+
+#include "test_natives.h"
+
+#include "nat_standard.h"
+#include "node_protocol.h"
+
+/* --- tests/support/vm_harness.cpp ------------------------------------------------ */
+
+static void native_subtract(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], 1);
+    int16_t *a = vm_variables(vm, (uint16_t)arguments[1], 1);
+    int16_t *b = vm_variables(vm, (uint16_t)arguments[2], 1);
+    if (dest && a && b)
+        *dest = (int16_t)(*a - *b);
+}
+
+static void native_fail(vm_state *vm, const int16_t *arguments)
+{
+    (void)arguments;
+    vm_error_node_specific(vm, "test failure");
+}
+
+static void native_fill(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t size = (uint16_t)arguments[2];
+    int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], size);
+    int16_t *value = vm_variables(vm, (uint16_t)arguments[1], 1);
+    uint16_t i;
+    for (i = 0; dest && value && i < size; i++)
+        dest[i] = *value;
+}
+
+static void native_reach(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t length = (uint16_t)arguments[1];
+    int16_t *first = vm_variables(vm, (uint16_t)arguments[0], length);
+    uint16_t i;
+    for (i = 0; first && i < length; i++)
+        first[i] = 7;
+}
+
+static void native_yield(vm_state *vm, const int16_t *arguments)
+{
+    (void)arguments;
+    vm->flags &= (uint16_t)~VM_FLAG_EVENT_RUNNING;
+}
+
+static void native_stat(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t size = (uint16_t)arguments[4];
+    const int16_t *source = vm_variables(vm, (uint16_t)arguments[0], size);
+    int16_t *outputs[3];
+    int32_t low, high, sum = 0;
+    uint16_t i;
+
+    for (i = 0; i < 3; i++)
+        outputs[i] = vm_variables(vm, (uint16_t)arguments[1 + i], 1);
+    if (!source || !outputs[0] || !outputs[1] || !outputs[2] || size == 0)
+        return;
+    low = high = source[0];
+    for (i = 0; i < size; i++) {
+        low = source[i] < low ? source[i] : low;
+        high = source[i] > high ? source[i] : high;
+        sum += source[i];
+    }
+    *outputs[0] = (int16_t)low;
+    *outputs[1] = (int16_t)high;
+    *outputs[2] = (int16_t)(sum / size);
+}
+
+static const vm_native subtract_native = { "test.subtract", "", native_subtract, 3, 0, 0 };
+static const vm_native fill_native = { "test.fill", "", native_fill, 3, 0, 0 };
+static const vm_native fail_native = { "test.fail", "", native_fail, 0, 0, 0 };
+static const vm_native reach_native = { "test.reach", "", native_reach, 2, 0, 0 };
+static const vm_native yield_native = { "test.yield", "", native_yield, 0, 0, 0 };
+static const vm_native stat_native = { "test.stat", "", native_stat, 5, 0, 0 };
+static const vm_native *const harness_native_list[] = {
+    &subtract_native, &fill_native, &fail_native, &reach_native, &yield_native, &fail_native,
+    &fail_native,     &fail_native, &fail_native, &fail_native,  &fail_native,  &stat_native
+};
+const vm_native_table harness_natives = { harness_native_list, 12 };
+
+/* --- tests/node/node_harness.cpp ------------------------------------------------ */
+
+static void test_sqrt(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *x = vm_variables(vm, (uint16_t)arguments[0], 1);
+    int32_t root = 0;
+    if (x == 0)
+        return;
+    if (*x < 0) {
+        vm_error_node_specific(vm, "Negative input to sqrt");
+        return;
+    }
+    while ((root + 1) * (root + 1) <= *x)
+        root++;
+    *x = (int16_t)root;
+}
+
+static void test_fill(vm_state *vm, const int16_t *arguments)
+{
+    uint16_t size = (uint16_t)arguments[2];
+    int16_t *value = vm_variables(vm, (uint16_t)arguments[1], 1);
+    int16_t *dest;
+    uint16_t i;
+    if (value == 0)
+        return;
+    dest = vm_variables(vm, (uint16_t)arguments[0], size);
+    if (dest == 0)
+        return;
+    for (i = 0; i < size; i++)
+        dest[i] = *value;
+}
+
+static const vm_native_parameter sqrt_parameters[] = { { 1, "x" } };
+static const vm_native test_sqrt_native = { "test.sqrt", "integer square root", test_sqrt, 1,
+                                            1,           sqrt_parameters };
+static const vm_native_parameter fill_parameters[] = { { -1, "dest" }, { 1, "value" } };
+static const vm_native test_fill_native = { "test.fill", "fills dest with value", test_fill, 3,
+                                            2,           fill_parameters };
+static const vm_native *const tiny_native_list[] = { &test_sqrt_native, &test_fill_native };
+static const vm_native_table tiny_natives = { tiny_native_list, 2 };
+
+static const node_named_variable tiny_variables[] = { { "id", 1 },
+                                                      { "source", 1 },
+                                                      { "args", 4 },
+                                                      { "leds", 3 } };
+static const node_local_event tiny_events[] = { { "timer", "periodic tick" },
+                                                { "button", "pressed" } };
+const node_description tiny_description = {
+    "tinynode", NODE_PROTOCOL_VERSION, tiny_variables, 4, tiny_events, 2, &tiny_natives
+};
+
+static const node_named_variable refnode_variables[] = { { "id", 1 },
+                                                         { "source", 1 },
+                                                         { "args", 32 },
+                                                         { "_productId", 1 },
+                                                         { "timer.period", 1 } };
+static const node_local_event refnode_events[] = { { "timer", "periodic timer" } };
+const node_description refnode_description = {
+    "refnode", NODE_PROTOCOL_VERSION, refnode_variables, 5, refnode_events, 1, &nat_standard_table
+};
