@@ -27,6 +27,11 @@ const TOKEN_CASES = [
     // What the word after a keyword names.
     ["call math.fill(v, 0)", ["call:keyword", "math.fill:functionName", "(:bracket", "v:variableName", ",:punctuation", "0:number", "):bracket"]],
     ["sub turn callsub turn", ["sub:definitionKeyword", "turn:subroutineName", "callsub:keyword", "turn:subroutineName"]],
+    // docs/language.md: locals, subroutines with parameters, calls in expressions.
+    ["local front = prox[0]", ["local:definitionKeyword", "front:variableName", "=:operator", "prox:variableName", "[:bracket", "0:number", "]:bracket"]],
+    ["local = 2", ["local:variableName", "=:operator", "2:number"]],
+    ["sub clamp(v, low) return v", ["sub:definitionKeyword", "clamp:subroutineName", "(:bracket", "v:variableName", ",:punctuation", "low:variableName", "):bracket", "return:controlKeyword", "v:variableName"]],
+    ["x = clamp(a, 0)", ["x:variableName", "=:operator", "clamp:functionName", "(:bracket", "a:variableName", ",:punctuation", "0:number", "):bracket"]],
     ["onevent ir_sensors emit bad 1", ["onevent:definitionKeyword", "ir_sensors:eventName", "emit:keyword", "bad:eventName", "1:number"]],
     ["v[0:2]", ["v:variableName", "[:bracket", "0:number", "::punctuation", "2:number", "]:bracket"]],
     ["x = @", ["x:variableName", "=:operator", "@:invalid"]],

@@ -12,6 +12,10 @@ const DEFINITION_KEYWORDS = ["var", "const", "sub", "onevent"];
 const CALL_KEYWORDS = ["call", "callsub", "emit", "_emit"];
 const OPERATOR_KEYWORDS = ["or", "and", "not", "abs"];
 export const KEYWORDS = [...CONTROL_KEYWORDS, ...DEFINITION_KEYWORDS, ...CALL_KEYWORDS, ...OPERATOR_KEYWORDS];
+// docs/language.md: `local` declares a local variable, but only when a name
+// follows it (a variable called `local` still works as in Aseba 1.6).
+export const CONTEXTUAL_KEYWORDS = ["local"];
+const LOCAL_DECLARATION = /^\s+[\p{L}_][\p{L}\p{N}_.]*/u;
 
 const ROLE = new Map([
     ...CONTROL_KEYWORDS.map((word) => [word, "controlKeyword"]),
@@ -68,6 +72,7 @@ const asebaParser = {
             const expected = state.expect;
             state.expect = null;
             if (NUMBER.test(text)) return "number";
+            if (text === "local" && stream.match(LOCAL_DECLARATION, false)) return "definitionKeyword";
             const role = ROLE.get(text);
             if (role) {
                 state.expect = NAMED_AFTER[text] ?? null;
@@ -79,7 +84,11 @@ const asebaParser = {
                 }
                 return role;
             }
-            return expected ?? "variableName";
+            if (expected) return expected;
+            // A call in an expression: a subroutine with parameters
+            // (docs/language.md) or a native.
+            if (stream.match(/^\s*\(/, false)) return "functionName";
+            return "variableName";
         }
         state.expect = null;
         if (stream.match(OPERATOR)) return "operator";
