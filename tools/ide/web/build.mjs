@@ -1,5 +1,5 @@
-// Builds the page into OUTDIR: index.html, app.js and app.css (one bundle
-// each, minified), which aseba-ide serves and compiles into itself.
+// Builds the page into OUTDIR: index.html, favicon.svg, app.js and app.css
+// (one bundle each, minified), which aseba-ide serves and compiles into itself.
 import { build } from "esbuild";
 import { copyFileSync, mkdirSync } from "node:fs";
 import { dirname, join } from "node:path";
@@ -22,4 +22,4 @@ await build({
     outdir,
     logLevel: "warning",
 });
-copyFileSync(join(here, "src/index.html"), join(outdir, "index.html"));
+for (const file of ["index.html", "favicon.svg"]) copyFileSync(join(here, "src", file), join(outdir, file));
