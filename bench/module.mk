@@ -3,18 +3,19 @@
 # to measure the reference in the same run; the reference is only measured.
 BENCH_COMPILER_LIBS := aseba_compiler aseba_natives
 
-# The VM dispatch loop, once per dispatch variant of our VM; the reference VM
-# is linked in both (its symbols are AsebaVM*, ours vm_*).
+# The VM dispatch loop, once per dispatch variant of our VM (bench-vm: as the
+# host tools use it, computed goto; bench-vm-switch: the dsPIC's switch); the
+# reference VM is linked in both (its symbols are AsebaVM*, ours vm_*).
 BENCH_VM_SOURCES := bench/vm_bench.cpp tests/vm/reference_node.cpp
 PROGRAMS += bench-vm
 bench-vm_SOURCES := $(BENCH_VM_SOURCES)
 bench-vm_LIBS := test_support $(BENCH_COMPILER_LIBS) aseba_vm
 bench-vm_LDLIBS := -lasebavm
 
-PROGRAMS += bench-vm-goto
-bench-vm-goto_SOURCES := $(BENCH_VM_SOURCES)
-bench-vm-goto_LIBS := test_support $(BENCH_COMPILER_LIBS) aseba_vm_goto
-bench-vm-goto_LDLIBS := -lasebavm
+PROGRAMS += bench-vm-switch
+bench-vm-switch_SOURCES := $(BENCH_VM_SOURCES)
+bench-vm-switch_LIBS := test_support $(BENCH_COMPILER_LIBS) aseba_vm_switch
+bench-vm-switch_LDLIBS := -lasebavm
 
 # The compiler against the reference compiler on the same inputs.
 PROGRAMS += bench-compiler
@@ -29,3 +30,17 @@ PROGRAMS += bench-node
 bench-node_SOURCES := bench/node_bench.cpp tests/interop/child_process.cpp \
                       tests/interop/interop_support.cpp
 bench-node_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
+
+# The VM on a 16-bit-int AVR: simavr runs bench/avr_workload.c (which
+# scripts/bench.sh builds with avr-gcc) and this counts its instructions.
+PROGRAMS += avr-step-counter
+avr-step-counter_SOURCES := bench/avr_step_counter.c
+avr-step-counter_LDLIBS := -lsimavr
+
+# `make cross-check` also prints the RAM of the e-puck firmware, measured on
+# a linked 16-bit image (bench/firmware_ram.sh; `make bench` gives its parts).
+.PHONY: firmware-ram
+firmware-ram: | $(DEPS_STAMP)
+	@bench/firmware_ram.sh $(BUILD) | awk '$$1 == "total" { \
+	    printf "== e-puck firmware, linked 16-bit image (avr-gcc): %d bytes of RAM\n", $$2 }'
+cross-check: firmware-ram

@@ -113,7 +113,7 @@ void epuck_store_settings_place(store_place *place);
 bool epuck_store_save_bytecode(hal_board *board, const uint16_t *bytecode, uint16_t count);
 
 // Loads the newest stored bytecode; returns false when there is none. The
-// caller then resets the VM's `when` flags (vm_reset_when_flags) and runs init.
+// caller then resets the VM (vm_reset: verified, `when` flags cleared) and runs init.
 bool epuck_store_load_bytecode(hal_board *board,
                                uint16_t *bytecode,
                                uint16_t capacity,

@@ -30,7 +30,8 @@ NATIVE(dsp_fft,
        "dsp.fft",
        "in-place FFT of real,imag (size 8..128, power of 2); each stage halves, so the result is "
        "X/N; rounded half up, saturated",
-       3);
+       3,
+       dsp_fft_parameters);
 
 static const vm_native_parameter dsp_mag_parameters[] = { { TEMPLATE_N, "dest" },
                                                           { TEMPLATE_N, "real" },
@@ -38,7 +39,8 @@ static const vm_native_parameter dsp_mag_parameters[] = { { TEMPLATE_N, "dest" }
 NATIVE(dsp_mag,
        "dsp.mag",
        "dest = floor(sqrt(real^2 + imag^2)) element by element, saturated to 32767",
-       4);
+       4,
+       dsp_mag_parameters);
 
 static const vm_native_parameter dsp_fir_parameters[] = { { TEMPLATE_N, "dest" },
                                                           { TEMPLATE_N, "src" },
@@ -47,7 +49,8 @@ NATIVE(dsp_fir,
        "dsp.fir",
        "FIR filter: dest[n] = sum c[k]*src[n-k] / 32768 (c in Q15, src zero before its start), "
        "rounded, saturated; dest may be src",
-       5);
+       5,
+       dsp_fir_parameters);
 
 static const vm_native_parameter dsp_iir_parameters[] = { { TEMPLATE_N, "dest" },
                                                           { TEMPLATE_N, "src" },
@@ -57,7 +60,8 @@ NATIVE(dsp_iir,
        "dsp.iir",
        "biquad: y = (b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2) / 16384; coefficients [b0 b1 b2 a1 a2] "
        "in Q14, state [x1 x2 y1 y2] kept between calls; rounded, saturated",
-       5);
+       5,
+       dsp_iir_parameters);
 
 static const vm_native_parameter dsp_corr_parameters[] = { { TEMPLATE_N, "dest" },
                                                            { TEMPLATE_M, "a" },
@@ -67,7 +71,8 @@ NATIVE(dsp_corr,
        "dsp.corr",
        "correlation: dest[i] = sum a[n+lag]*b[n] >> shift (0..31), lag = i - size(dest)/2; "
        "rounded, saturated",
-       7);
+       7,
+       dsp_corr_parameters);
 
 static const vm_native_parameter dsp_conv_parameters[] = { { TEMPLATE_N, "dest" },
                                                            { TEMPLATE_M, "a" },
@@ -77,9 +82,10 @@ NATIVE(dsp_conv,
        "dsp.conv",
        "convolution: dest[i] = sum a[k]*b[i-k] >> shift (0..31); full length is "
        "size(a)+size(b)-1; rounded, saturated",
-       7);
+       7,
+       dsp_conv_parameters);
 
 static const vm_native_parameter dsp_peak_parameters[] = { { SCALAR, "index" },
                                                            { SCALAR, "value" },
                                                            { TEMPLATE_N, "src" } };
-NATIVE(dsp_peak, "dsp.peak", "index and value of the first maximum of src", 4);
+NATIVE(dsp_peak, "dsp.peak", "index and value of the first maximum of src", 4, dsp_peak_parameters);

@@ -58,15 +58,13 @@ void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_o
 
 #define COUNT_OF(array) ((uint8_t)(sizeof(array) / sizeof((array)[0])))
 
-// One native's record: its parameter array is `<identifier>_parameters` and
-// its function `nat_<identifier>_function`.
-#define NATIVE(identifier, name, description, stack_words)                                         \
-    const vm_native nat_##identifier = { name,                                                     \
-                                         description,                                              \
-                                         nat_##identifier##_function,                              \
-                                         stack_words,                                              \
-                                         COUNT_OF(identifier##_parameters),                        \
-                                         identifier##_parameters }
+// One native's record: its function is `nat_<identifier>_function`; natives
+// with the same parameters share one array of them.
+#define NATIVE(identifier, name, description, stack_words, parameters)                             \
+    const vm_native nat_##identifier = {                                                           \
+        name,        description,          nat_##identifier##_function,                            \
+        stack_words, COUNT_OF(parameters), parameters                                              \
+    }
 
 // nat_math.c
 void nat_math_copy_function(vm_state *vm, const int16_t *arguments);

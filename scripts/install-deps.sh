@@ -10,6 +10,7 @@ packages=(
     gcc-avr avr-libc binutils-avr                  # cross-check: 16-bit int
     gcc-arm-none-eabi libnewlib-arm-none-eabi      # cross-check: Cortex-M; make stm32f4
     qemu-system-arm                                # the STM32F4 image's tests (QEMU netduinoplus2)
+    simavr libsimavr-dev                           # benchmarks: the VM on an AVR
     aseba libdashel-dev locales                    # the reference implementation (tests only)
     valgrind                                       # instruction counts in benchmarks
     python3                                        # test and benchmark scripts

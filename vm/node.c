@@ -45,9 +45,12 @@ void node_init(node_state *node,
                const node_hooks *hooks)
 {
     static const vm_native_table no_natives = { NULL, 0 };
-    static const node_hooks no_hooks = { NULL, NULL, NULL, NULL };
-    static const node_error_counters no_errors = { 0, 0, 0, 0, 0 };
+    uint8_t *bytes = (uint8_t *)node;
+    uint16_t i;
 
+    // Every counter, flag and buffer starts at zero; absent hooks are NULL.
+    for (i = 0; i < sizeof *node; i++)
+        bytes[i] = 0;
     vm_init(&node->vm,
             memory,
             node_id,
@@ -63,15 +66,8 @@ void node_init(node_state *node,
 
     node->description = description;
     node->transport = *transport;
-    node->hooks = hooks != NULL ? *hooks : no_hooks;
-    node->received = 0;
-    node->frame_ready = false;
-    node->resynchronising = false;
-    node->last_byte_ms = 0;
-    node->transmit_fill = 0;
-    node->transmit_left = 0;
-    node->pending_local_events = 0;
-    node->errors = no_errors;
+    if (hooks != NULL)
+        node->hooks = *hooks;
 }
 
 // --- receiving ---------------------------------------------------------------

@@ -1,24 +1,30 @@
 // The Aseba interpreter: event setup and the run loop (bytecode.md §2-§9).
 //
-// The loop keeps pc, sp and the memory bounds in locals and writes them back
-// only where the outside world can look: at natives, emits, errors, the end
-// of the event, breakpoints and when the step budget runs out. Every memory
-// access is checked, so no bytecode can reach outside the caller's arrays.
+// The loop runs only bytecode that the verifier accepted (vm_verify.c), so
+// it checks nothing the verifier proved: pc always lies on an instruction of
+// the code, every direct address inside the variables, every pop finds its
+// value. It checks what depends on run-time values: the step budget, stack
+// room on each push, an indirect index against its array's size, division by
+// zero, SUB_RET outside a call. The hot state (pc and the stack top as
+// pointers) lives in locals, written back only where the outside world can
+// look: at natives, emits, errors, the end of the event and when the budget
+// runs out. Breakpoints cost the loop nothing: with any set, vm_run steps
+// one instruction at a time and checks them in between.
 
-#include "vm.h"
+#include "vm_internal.h"
 #include "vm_opcodes.h"
 
 #include <stddef.h>
 
-// Texts of the NODE_SPECIFIC_ERROR reports of bytecode.md §8.5.
-static const char error_stack_overflow[] = "stack overflow";
-static const char error_stack_underflow[] = "stack underflow";
-static const char error_variables_bounds[] = "out of variables bounds";
-static const char error_bytecode_bounds[] = "out of bytecode bounds";
-static const char error_unknown_bytecode[] = "unknown bytecode";
-static const char error_unknown_operator[] = "unknown operator";
-static const char error_unknown_native[] = "unknown native function";
-static const char error_event_too_large[] = "emitted event too large";
+const char vm_error_stack_overflow[] = "stack overflow";
+const char vm_error_stack_underflow[] = "stack underflow";
+const char vm_error_variables_bounds[] = "out of variables bounds";
+const char vm_error_bytecode_bounds[] = "out of bytecode bounds";
+const char vm_error_unknown_bytecode[] = "unknown bytecode";
+const char vm_error_unknown_operator[] = "unknown operator";
+const char vm_error_unknown_native[] = "unknown native function";
+const char vm_error_event_too_large[] = "emitted event too large";
+const char vm_error_invalid_jump[] = "invalid jump";
 
 // How the run loop ended.
 enum run_outcome { RUN_EVENT_ENDED, RUN_BUDGET_SPENT, RUN_BREAKPOINT, RUN_INTERRUPTED, RUN_ERROR };
@@ -45,6 +51,8 @@ void vm_init(vm_state *vm,
     vm->natives = *natives;
     vm->callbacks = callbacks;
     vm->context = context;
+    vm->rejection = NULL;
+    vm->rejection_pc = 0;
     if (vm->memory.bytecode_size > 0)
         vm->memory.bytecode[0] = 0;
     for (i = 0; i < vm->memory.variables_size; i++)
@@ -103,13 +111,19 @@ void vm_error_node_specific(vm_state *vm, const char *message)
     vm->callbacks->node_specific_error(vm->context, vm->pc, message);
 }
 
+void vm_report_rejection(vm_state *vm)
+{
+    vm->pc = vm->rejection_pc;
+    vm_error_node_specific(vm, vm->rejection);
+}
+
 int16_t *vm_variables(vm_state *vm, uint16_t address, uint16_t length)
 {
     // An empty span touches nothing: any address will do, as upstream.
     if (length == 0)
         return vm->memory.variables;
     if (address >= vm->memory.variables_size || length > vm->memory.variables_size - address) {
-        vm_error_node_specific(vm, error_variables_bounds);
+        vm_error_node_specific(vm, vm_error_variables_bounds);
         return NULL;
     }
     return vm->memory.variables + address;
@@ -117,52 +131,63 @@ int16_t *vm_variables(vm_state *vm, uint16_t address, uint16_t length)
 
 // --- arithmetic (bytecode.md §4) ---------------------------------------------
 
-// Operands are promoted to 32 bits and results truncated to 16, as upstream
-// does on 32-bit hosts; the casts through uint32_t keep every step defined C.
-static inline int16_t truncate(int32_t value)
+// Upstream computes on operands promoted to 32 bits and truncates the result
+// to 16. The same results come from 16-bit operations on unsigned words
+// (whose wrap-around is defined C) with the few cases where 32 bits differ
+// made explicit: shifts by 16 or more, and -32768 / -1. That is one machine
+// operation instead of a 32-bit library call on a 16-bit chip.
+
+static inline int16_t word_sum(int16_t a, int16_t b)
 {
-    return (int16_t)(uint16_t)(uint32_t)value;
+    return (int16_t)(uint16_t)((unsigned)(uint16_t)a + (uint16_t)b);
 }
 
-// Returns false for an unknown operator; sets *division_by_zero (and gives 0)
-// for a zero divisor.
-static inline bool binary_operation(uint16_t operation,
-                                    int16_t a,
-                                    int16_t b,
-                                    int16_t *result,
-                                    bool *division_by_zero)
+static inline int16_t word_difference(int16_t a, int16_t b)
 {
-    int32_t x = a, y = b;
+    return (int16_t)(uint16_t)((unsigned)(uint16_t)a - (uint16_t)b);
+}
 
-    switch (operation) {
-    case VM_BINARY_SHIFT_LEFT: *result = truncate((int32_t)((uint32_t)x << (y & 31))); break;
-    case VM_BINARY_SHIFT_RIGHT: *result = truncate(x >> (y & 31)); break;
-    case VM_BINARY_ADD: *result = truncate(x + y); break;
-    case VM_BINARY_SUB: *result = truncate(x - y); break;
-    case VM_BINARY_MULT: *result = truncate(x * y); break;
-    case VM_BINARY_DIV:
-    case VM_BINARY_MOD:
-        if (y == 0) {
-            *division_by_zero = true;
-            *result = 0;
-        } else {
-            *result = truncate(operation == VM_BINARY_DIV ? x / y : x % y);
-        }
-        break;
-    case VM_BINARY_BIT_OR: *result = (int16_t)(a | b); break;
-    case VM_BINARY_BIT_XOR: *result = (int16_t)(a ^ b); break;
-    case VM_BINARY_BIT_AND: *result = (int16_t)(a & b); break;
-    case VM_BINARY_EQUAL: *result = a == b; break;
-    case VM_BINARY_NOT_EQUAL: *result = a != b; break;
-    case VM_BINARY_BIGGER_THAN: *result = a > b; break;
-    case VM_BINARY_BIGGER_EQUAL_THAN: *result = a >= b; break;
-    case VM_BINARY_SMALLER_THAN: *result = a < b; break;
-    case VM_BINARY_SMALLER_EQUAL_THAN: *result = a <= b; break;
-    case VM_BINARY_OR: *result = a != 0 || b != 0; break;
-    case VM_BINARY_AND: *result = a != 0 && b != 0; break;
-    default: return false;
-    }
-    return true;
+static inline int16_t word_product(int16_t a, int16_t b)
+{
+    return (int16_t)(uint16_t)((unsigned)(uint16_t)a * (uint16_t)b);
+}
+
+static inline int16_t word_negation(int16_t a)
+{
+    return (int16_t)(uint16_t)(0u - (uint16_t)a);
+}
+
+// The count is taken modulo 32, as the 32-bit shift upstream compiles to.
+static inline int16_t shift_left(int16_t a, int16_t b)
+{
+    uint16_t count = (uint16_t)b & 31u;
+
+    return count >= 16 ? 0 : (int16_t)(uint16_t)((unsigned)(uint16_t)a << count);
+}
+
+// Arithmetic shift (gcc and XC16 shift signed values arithmetically).
+static inline int16_t shift_right(int16_t a, int16_t b)
+{
+    uint16_t count = (uint16_t)b & 31u;
+
+    return (int16_t)(a >> (count >= 15 ? 15 : count));
+}
+
+// Divisor not 0. -32768 / -1 is 32768, truncated back to -32768.
+static inline int16_t quotient(int16_t a, int16_t b)
+{
+    return b == -1 ? word_negation(a) : (int16_t)(a / b);
+}
+
+static inline int16_t remainder_of(int16_t a, int16_t b)
+{
+    return b == -1 ? 0 : (int16_t)(a % b);
+}
+
+// DIV or MOD, as the instruction `word` says, by a divisor that is not 0.
+static inline int16_t divide(unsigned word, int16_t a, int16_t b)
+{
+    return (word & VM_OPERATOR_MASK) == VM_BINARY_DIV ? quotient(a, b) : remainder_of(a, b);
 }
 
 static bool at_breakpoint(const vm_state *vm, uint16_t pc)
@@ -178,33 +203,53 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
 
 // --- the run loop ------------------------------------------------------------
 
-// Fetch: the budget, the breakpoint branch (free when none are set: the count
-// is a local that stays 0) and the bytecode bound, then the instruction word.
-#define FETCH()                                                                                    \
-    if (remaining == 0)                                                                            \
-        goto budget_spent;                                                                         \
-    remaining--;                                                                                   \
-    if (breakpoint_count != 0 && at_breakpoint(vm, pc))                                            \
-        goto breakpoint_hit;                                                                       \
-    if (pc >= bytecode_size)                                                                       \
-        goto bytecode_out_of_bounds;                                                               \
-    word = bytecode[pc];
+// The binary operators whose result is an expression of a and b; DIV and MOD,
+// which may fail, are written out in the loop.
+#define VM_SIMPLE_BINARY_OPERATORS(X)                                                              \
+    X(SHIFT_LEFT, shift_left(a, b))                                                                \
+    X(SHIFT_RIGHT, shift_right(a, b))                                                              \
+    X(ADD, word_sum(a, b))                                                                         \
+    X(SUB, word_difference(a, b))                                                                  \
+    X(MULT, word_product(a, b))                                                                    \
+    X(BIT_OR, (int16_t)(a | b))                                                                    \
+    X(BIT_XOR, (int16_t)(a ^ b))                                                                   \
+    X(BIT_AND, (int16_t)(a & b))                                                                   \
+    X(EQUAL, a == b)                                                                               \
+    X(NOT_EQUAL, a != b)                                                                           \
+    X(BIGGER_THAN, a > b)                                                                          \
+    X(BIGGER_EQUAL_THAN, a >= b)                                                                   \
+    X(SMALLER_THAN, a < b)                                                                         \
+    X(SMALLER_EQUAL_THAN, a <= b)                                                                  \
+    X(OR, a != 0 || b != 0)                                                                        \
+    X(AND, a != 0 && b != 0)
 
-// The dispatch is written once and compiles as a switch (the reference) or,
-// with VM_USE_COMPUTED_GOTO, as a jump through a table of labels.
+// The dispatch is written once and compiles as a switch (the reference, for
+// compilers without `&&label`) or, with VM_USE_COMPUTED_GOTO, as jumps
+// through tables of labels (and then operators too, on bits 7..0).
+// Computed goto counts the budget (at least 1) after each instruction, in
+// each one's code: one decrement and a branch, and the count fits the word
+// it was given in.
 #if VM_USE_COMPUTED_GOTO
-#define VM_LOOP_BEGIN VM_NEXT();
+#define VM_LOOP_BEGIN VM_DISPATCH();
 #define VM_LOOP_END
+#define VM_DISPATCH()                                                                              \
+    do {                                                                                           \
+        word = *ip;                                                                                \
+        goto *opcode_table[word >> VM_OPCODE_SHIFT];                                               \
+    } while (0)
 #define VM_CASE(name) opcode_##name:
 #define VM_NEXT()                                                                                  \
-    do {                                                                                           \
-        FETCH();                                                                                   \
-        goto *dispatch_table[word >> VM_OPCODE_SHIFT];                                             \
-    } while (0)
+    if (--remaining != 0)                                                                          \
+        VM_DISPATCH();                                                                             \
+    else                                                                                           \
+        goto budget_spent
 #else
+// The switch counts the budget once, before each instruction: less code.
 #define VM_LOOP_BEGIN                                                                              \
     for (;;) {                                                                                     \
-        FETCH();                                                                                   \
+        if (remaining-- == 0)                                                                      \
+            goto budget_spent;                                                                     \
+        word = *ip;                                                                                \
         switch (word >> VM_OPCODE_SHIFT) {
 #define VM_LOOP_END                                                                                \
     }                                                                                              \
@@ -213,45 +258,63 @@ static bool at_breakpoint(const vm_state *vm, uint16_t pc)
 #define VM_NEXT()     continue
 #endif
 
-// Stack guards: the stack must hold `n` more values, or have `n` values.
-#define NEED_ROOM(n)                                                                               \
-    if (sp + (n) > stack_top)                                                                      \
-    goto stack_overflow
-#define NEED_VALUES(n)                                                                             \
-    if (sp < (n)-1)                                                                                \
-    goto stack_underflow
-// The instruction's operand words must lie inside the bytecode.
-#define NEED_WORDS(n)                                                                              \
-    if ((uint16_t)(bytecode_size - pc) < (n))                                                      \
-    goto bytecode_out_of_bounds
+#define PUSH(value)                                                                                \
+    do {                                                                                           \
+        if (next == stack_end)                                                                     \
+            goto stack_overflow;                                                                   \
+        *next++ = (value);                                                                         \
+    } while (0)
 
-// Runs at most `budget` instructions of the active event. A run (as opposed
-// to a single step) stops at breakpoints and when EVENT_RUNNING is cleared.
+// pc and sp for the outside world, from the run loop's pointers.
+static void save_state(vm_state *vm, const uint16_t *ip, const int16_t *next)
+{
+    vm->pc = (uint16_t)(ip - vm->memory.bytecode);
+    vm->sp = (int16_t)(next - vm->memory.stack - 1);
+}
+
+// Runs at most `budget` instructions of the active event, whose bytecode the
+// verifier accepted. A run (as opposed to a single step) ends when a native
+// clears EVENT_RUNNING.
 static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
 {
     uint16_t *const bytecode = vm->memory.bytecode;
     int16_t *const variables = vm->memory.variables;
-    int16_t *const stack = vm->memory.stack;
-    const uint16_t bytecode_size = vm->memory.bytecode_size;
-    const uint16_t variables_size = vm->memory.variables_size;
-    const int16_t stack_top = (int16_t)(vm->memory.stack_size - 1);
-    const uint16_t breakpoint_count = running ? vm->breakpoint_count : 0;
-    uint16_t remaining = budget;
-    uint16_t pc = vm->pc;
-    int16_t sp = vm->sp;
-    uint16_t word;
-    uint16_t operand;
-    int16_t result;
-    bool division_by_zero;
+    // The stack's base is left out of the locals: only cold paths need it.
+    int16_t *const stack_end = vm->memory.stack + vm->memory.stack_size;
+    unsigned remaining = budget; // at least 1; `unsigned`: the chip's natural width
+    uint16_t *ip = bytecode + vm->pc;
+    int16_t *next = vm->memory.stack + (vm->sp + 1); // the first free stack word
+    unsigned word;
+    int16_t a = 0, b = 0; // operands (initialised for the compiler's flow analysis)
     const char *error;
+    enum run_outcome outcome;
 
 #if VM_USE_COMPUTED_GOTO
-    static const void *const dispatch_table[16] = {
-#define VM_OPCODE_LABEL(name, code, words, effect, meaning) [code] = &&opcode_##name,
+    static const void *const opcode_table[16] = {
+#define VM_OPCODE_LABEL(name, code, words, stack, meaning) [code] = &&opcode_##name,
         VM_OPCODE_LIST(VM_OPCODE_LABEL)
 #undef VM_OPCODE_LABEL
-          [VM_OP_INVALID] = &&opcode_INVALID,
+          [VM_OP_INVALID] = &&unknown_bytecode,
     };
+    // The verifier admits operators below VM_BINARY_OPERATOR_COUNT only; the
+    // tables still cover every value of their index, so that a fault of the
+    // verifier could never send the loop elsewhere than to a label of its own.
+#define VM_OPERATOR_LABEL(name, expression) [VM_BINARY_##name] = &&arithmetic_##name,
+    static const void *const arithmetic_table[VM_OPERATOR_MASK + 1] = {
+        [VM_BINARY_OPERATOR_COUNT... VM_OPERATOR_MASK] = &&unknown_operator,
+        [VM_BINARY_DIV] = &&arithmetic_DIV,
+        [VM_BINARY_MOD] = &&arithmetic_MOD,
+        VM_SIMPLE_BINARY_OPERATORS(VM_OPERATOR_LABEL)
+    };
+#undef VM_OPERATOR_LABEL
+#define VM_OPERATOR_LABEL(name, expression) [VM_BINARY_##name] = &&branch_##name,
+    static const void *const branch_table[VM_OPERATOR_MASK + 1] = {
+        [VM_BINARY_OPERATOR_COUNT... VM_OPERATOR_MASK] = &&unknown_operator,
+        [VM_BINARY_DIV] = &&branch_DIV,
+        [VM_BINARY_MOD] = &&branch_MOD,
+        VM_SIMPLE_BINARY_OPERATORS(VM_OPERATOR_LABEL)
+    };
+#undef VM_OPERATOR_LABEL
 #endif
 
     VM_LOOP_BEGIN
@@ -259,300 +322,331 @@ static enum run_outcome execute(vm_state *vm, uint16_t budget, bool running)
     VM_CASE(STOP)
     {
         vm->flags &= (uint16_t)~VM_FLAG_EVENT_ACTIVE;
-        vm->pc = pc;
-        vm->sp = sp;
-        return RUN_EVENT_ENDED;
+        outcome = RUN_EVENT_ENDED;
+        goto leave;
     }
 
     VM_CASE(SMALL_IMMEDIATE)
     {
-        NEED_ROOM(1);
         // Sign-extend the 12-bit operand.
-        stack[++sp] = (int16_t)((uint16_t)(word << 4)) >> 4;
-        pc++;
+        PUSH((int16_t)(uint16_t)(word << 4) >> 4);
+        ip++;
         VM_NEXT();
     }
 
     VM_CASE(LARGE_IMMEDIATE)
     {
-        NEED_WORDS(2);
-        NEED_ROOM(1);
-        stack[++sp] = (int16_t)bytecode[pc + 1];
-        pc += 2;
+        PUSH((int16_t)ip[1]);
+        ip += 2;
         VM_NEXT();
     }
 
     VM_CASE(LOAD)
     {
-        operand = word & VM_OPERAND_MASK;
-        if (operand >= variables_size)
-            goto variables_out_of_bounds;
-        NEED_ROOM(1);
-        stack[++sp] = variables[operand];
-        pc++;
+        PUSH(variables[word & VM_OPERAND_MASK]);
+        ip++;
         VM_NEXT();
     }
 
     VM_CASE(STORE)
     {
-        operand = word & VM_OPERAND_MASK;
-        if (operand >= variables_size)
-            goto variables_out_of_bounds;
-        NEED_VALUES(1);
-        variables[operand] = stack[sp--];
-        pc++;
+        variables[word & VM_OPERAND_MASK] = *--next;
+        ip++;
         VM_NEXT();
     }
 
     VM_CASE(LOAD_INDIRECT)
     {
-        uint16_t index, size;
+        // The verifier put the whole array inside the variables.
+        uint16_t index = (uint16_t)next[-1];
 
-        NEED_WORDS(2);
-        NEED_VALUES(1);
-        operand = word & VM_OPERAND_MASK;
-        size = bytecode[pc + 1];
-        index = (uint16_t)stack[sp];
-        if (index >= size)
+        if (index >= ip[1])
             goto array_out_of_bounds;
-        if (operand >= variables_size || index >= variables_size - operand)
-            goto variables_out_of_bounds;
-        stack[sp] = variables[operand + index];
-        pc += 2;
+        next[-1] = (variables + (word & VM_OPERAND_MASK))[index];
+        ip += 2;
         VM_NEXT();
     }
 
     VM_CASE(STORE_INDIRECT)
     {
-        uint16_t index, size;
+        uint16_t index = (uint16_t)next[-1];
 
-        NEED_WORDS(2);
-        NEED_VALUES(2);
-        operand = word & VM_OPERAND_MASK;
-        size = bytecode[pc + 1];
-        index = (uint16_t)stack[sp];
-        if (index >= size)
+        if (index >= ip[1])
             goto array_out_of_bounds;
-        if (operand >= variables_size || index >= variables_size - operand)
-            goto variables_out_of_bounds;
-        variables[operand + index] = stack[sp - 1];
-        sp -= 2;
-        pc += 2;
+        (variables + (word & VM_OPERAND_MASK))[index] = next[-2];
+        next -= 2;
+        ip += 2;
         VM_NEXT();
     }
 
     VM_CASE(UNARY_ARITHMETIC)
     {
-        int32_t value;
-
-        NEED_VALUES(1);
-        value = stack[sp];
+        a = next[-1];
         switch (word & VM_OPERATOR_MASK) {
-        case VM_UNARY_SUB: value = -value; break;
-        case VM_UNARY_ABS: value = value < 0 ? -value : value; break;
-        case VM_UNARY_BIT_NOT: value = ~value; break;
+        case VM_UNARY_SUB: a = word_negation(a); break;
+        case VM_UNARY_ABS: a = a < 0 ? word_negation(a) : a; break;
+        case VM_UNARY_BIT_NOT: a = (int16_t)~a; break;
         default: goto unknown_operator;
         }
-        stack[sp] = truncate(value);
-        pc++;
+        next[-1] = a;
+        ip++;
         VM_NEXT();
     }
 
+#if VM_USE_COMPUTED_GOTO
+    // Each operator has its own code in each of the two instructions that
+    // use operators: the fastest dispatch.
     VM_CASE(BINARY_ARITHMETIC)
     {
-        NEED_VALUES(2);
-        division_by_zero = false;
-        if (!binary_operation(
-              word & VM_OPERATOR_MASK, stack[sp - 1], stack[sp], &result, &division_by_zero))
-            goto unknown_operator;
-        stack[--sp] = result;
-        if (division_by_zero) {
-            // The instruction completes with 0 and pc moves on, then the VM stops.
-            vm->pc = pc;
-            vm->sp = sp;
-            vm_error_division_by_zero(vm);
-            vm->pc = (uint16_t)(pc + 1);
-            return RUN_ERROR;
-        }
-        pc++;
-        VM_NEXT();
+        b = next[-1];
+        a = next[-2];
+        goto *arithmetic_table[word & VM_OPERATOR_MASK];
+#define VM_ARITHMETIC_CASE(name, expression)                                                       \
+    arithmetic_##name:                                                                             \
+    {                                                                                              \
+        next[-2] = (int16_t)(expression);                                                          \
+        next--;                                                                                    \
+        ip++;                                                                                      \
+        VM_NEXT();                                                                                 \
     }
-
-    VM_CASE(JUMP)
-    {
-        // Sign-extend the 12-bit displacement; the next fetch checks the target.
-        pc = (uint16_t)(pc + ((int16_t)((uint16_t)(word << 4)) >> 4));
+        VM_SIMPLE_BINARY_OPERATORS(VM_ARITHMETIC_CASE)
+#undef VM_ARITHMETIC_CASE
+    arithmetic_DIV:
+    arithmetic_MOD:
+        if (b == 0)
+            goto division_by_zero;
+        next[-2] = divide(word, a, b);
+        next--;
+        ip++;
         VM_NEXT();
     }
 
     VM_CASE(CONDITIONAL_BRANCH)
     {
-        uint16_t branch_pc = pc;
-        bool is_true;
+        b = next[-1];
+        a = next[-2];
+        goto *branch_table[word & VM_OPERATOR_MASK];
+#define VM_BRANCH_CASE(name, expression)                                                           \
+    branch_##name:                                                                                 \
+    {                                                                                              \
+        if (expression)                                                                            \
+            goto branch_true;                                                                      \
+        goto branch_false;                                                                         \
+    }
+        VM_SIMPLE_BINARY_OPERATORS(VM_BRANCH_CASE)
+#undef VM_BRANCH_CASE
+    branch_DIV:
+    branch_MOD:
+        if (b == 0)
+            goto division_by_zero;
+        if (divide(word, a, b) != 0)
+            goto branch_true;
+        goto branch_false;
+    }
+#else
+    // The two instructions that use operators share one evaluation: the
+    // smallest code.
+    VM_CASE(BINARY_ARITHMETIC)
+    VM_CASE(CONDITIONAL_BRANCH)
+    {
+        int16_t result;
 
-        NEED_WORDS(2);
-        NEED_VALUES(2);
-        division_by_zero = false;
-        if (!binary_operation(
-              word & VM_OPERATOR_MASK, stack[sp - 1], stack[sp], &result, &division_by_zero))
-            goto unknown_operator;
-        sp -= 2;
-        is_true = result != 0;
-        // A `when` takes its true path only on a false-to-true edge: the
-        // instruction word itself remembers the last result.
-        if (is_true && !((word & VM_BRANCH_IS_WHEN_BIT) && (word & VM_BRANCH_WAS_TRUE_BIT)))
-            pc += 2;
-        else
-            pc = (uint16_t)(pc + (int16_t)bytecode[pc + 1]);
-        if (is_true)
-            bytecode[branch_pc] = word | VM_BRANCH_WAS_TRUE_BIT;
-        else
-            bytecode[branch_pc] = word & (uint16_t)~VM_BRANCH_WAS_TRUE_BIT;
-        if (division_by_zero) {
-            vm->pc = branch_pc;
-            vm->sp = sp;
-            vm_error_division_by_zero(vm);
-            vm->pc = pc;
-            return RUN_ERROR;
+        b = next[-1];
+        a = next[-2];
+        switch (word & VM_OPERATOR_MASK) {
+#define VM_RESULT_CASE(name, expression)                                                           \
+    case VM_BINARY_##name:                                                                         \
+        result = (int16_t)(expression);                                                            \
+        break;
+            VM_SIMPLE_BINARY_OPERATORS(VM_RESULT_CASE)
+#undef VM_RESULT_CASE
+        case VM_BINARY_DIV:
+        case VM_BINARY_MOD:
+            if (b == 0)
+                goto division_by_zero;
+            result = divide(word, a, b);
+            break;
+        default: goto unknown_operator;
         }
+        if ((word >> VM_OPCODE_SHIFT) == VM_OP_BINARY_ARITHMETIC) {
+            next[-2] = result;
+            next--;
+            ip++;
+            VM_NEXT();
+        }
+        if (result != 0)
+            goto branch_true;
+        goto branch_false;
+    }
+#endif
+
+branch_true:
+    // The operands leave the stack. The instruction word remembers the last
+    // result: a `when` takes its true path only on a false-to-true edge.
+    next -= 2;
+    *ip = (uint16_t)(word | VM_BRANCH_WAS_TRUE_BIT);
+    if ((word & (VM_BRANCH_IS_WHEN_BIT | VM_BRANCH_WAS_TRUE_BIT)) !=
+        (VM_BRANCH_IS_WHEN_BIT | VM_BRANCH_WAS_TRUE_BIT)) {
+        ip += 2;
+        VM_NEXT();
+    }
+    ip += (int16_t)ip[1];
+    VM_NEXT();
+branch_false:
+    next -= 2;
+    *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
+    ip += (int16_t)ip[1];
+    VM_NEXT();
+
+    VM_CASE(JUMP)
+    {
+        // Sign-extend the 12-bit displacement.
+        ip += (int16_t)(uint16_t)(word << 4) >> 4;
         VM_NEXT();
     }
 
     VM_CASE(EMIT)
     {
-        uint16_t address, count;
-
-        NEED_WORDS(3);
-        address = bytecode[pc + 1];
-        count = bytecode[pc + 2];
-        if (count > VM_MAX_EVENT_WORDS) {
-            error = error_event_too_large;
-            goto node_error;
-        }
-        if (address > variables_size || count > variables_size - address)
-            goto variables_out_of_bounds;
-        vm->pc = pc;
-        vm->sp = sp;
-        vm->callbacks->emit(vm->context, word & VM_OPERAND_MASK, variables + address, count);
-        pc += 3;
+        save_state(vm, ip, next);
+        vm->callbacks->emit(vm->context, word & VM_OPERAND_MASK, variables + ip[1], ip[2]);
+        ip += 3;
         VM_NEXT();
     }
 
     VM_CASE(NATIVE_CALL)
     {
-        const vm_native *native;
+        const vm_native *native = vm->natives.natives[word & VM_OPERAND_MASK];
         int16_t arguments[VM_MAX_NATIVE_ARGUMENTS];
         uint16_t i;
 
-        operand = word & VM_OPERAND_MASK;
-        if (operand >= vm->natives.count) {
-            error = error_unknown_native;
-            goto node_error;
-        }
-        native = vm->natives.natives[operand];
-        if (native->stack_words > VM_MAX_NATIVE_ARGUMENTS) {
-            error = error_unknown_native;
-            goto node_error;
-        }
-        NEED_VALUES(native->stack_words);
         for (i = 0; i < native->stack_words; i++)
-            arguments[i] = stack[sp--];
-        vm->pc = pc;
-        vm->sp = sp;
+            arguments[i] = *--next;
+        save_state(vm, ip, next);
         native->function(vm, arguments);
-        pc++;
+        ip++;
         // A native may have stopped the event (an error) or, in a run,
         // cleared EVENT_RUNNING to end the run after this instruction.
         if (!(vm->flags & VM_FLAG_EVENT_ACTIVE)) {
-            vm->pc = pc;
-            return RUN_ERROR;
+            outcome = RUN_ERROR;
+            goto leave;
         }
         if (running && !(vm->flags & VM_FLAG_EVENT_RUNNING)) {
-            vm->pc = pc;
-            return RUN_INTERRUPTED;
+            outcome = RUN_INTERRUPTED;
+            goto leave;
         }
         VM_NEXT();
     }
 
     VM_CASE(SUB_CALL)
     {
-        NEED_ROOM(1);
-        stack[++sp] = (int16_t)(pc + 1);
-        pc = word & VM_OPERAND_MASK;
+        PUSH((int16_t)(ip - bytecode + 1));
+        ip = bytecode + (word & VM_OPERAND_MASK);
         VM_NEXT();
     }
 
     VM_CASE(SUB_RET)
     {
-        NEED_VALUES(1);
-        pc = (uint16_t)stack[sp--];
+        // The verifier left only the return address on the subroutine's
+        // stack; an event that never called has none.
+        if (next == vm->memory.stack)
+            goto stack_underflow;
+        ip = bytecode + (uint16_t) * --next;
         VM_NEXT();
     }
 
-#if VM_USE_COMPUTED_GOTO
-opcode_INVALID
-  :
-#else
-default:
+#if !VM_USE_COMPUTED_GOTO
+// Every opcode has a case, so the switch needs no range check.
+case VM_OP_INVALID: goto unknown_bytecode;
 #endif
-{
-    error = error_unknown_bytecode;
-    goto node_error;
-}
 
     VM_LOOP_END
 
 budget_spent:
-    vm->pc = pc;
-    vm->sp = sp;
-    return RUN_BUDGET_SPENT;
+    outcome = RUN_BUDGET_SPENT;
+leave:
+    save_state(vm, ip, next);
+    return outcome;
 
-breakpoint_hit:
-    // EVENT_RUNNING stays set, as upstream reports it (flags 7).
-    vm->pc = pc;
-    vm->sp = sp;
-    vm->flags |= VM_FLAG_STEP_BY_STEP;
-    vm->callbacks->execution_state_changed(vm->context, pc, vm->flags);
-    return RUN_BREAKPOINT;
+division_by_zero:
+    // The instruction completes with a result of 0, then the VM stops: an
+    // arithmetic one leaves 0 and moves pc on, a branch takes its false path.
+    // Both operands are still on the stack here.
+    save_state(vm, ip, next);
+    if ((word >> VM_OPCODE_SHIFT) == VM_OP_BINARY_ARITHMETIC) {
+        next[-2] = 0;
+        vm->sp--;
+        vm_error_division_by_zero(vm);
+        vm->pc++;
+    } else {
+        vm->sp = (int16_t)(vm->sp - 2);
+        *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
+        vm_error_division_by_zero(vm);
+        vm->pc = (uint16_t)(vm->pc + (int16_t)ip[1]);
+    }
+    return RUN_ERROR;
 
 array_out_of_bounds:
     // pc stays on the faulty instruction (bytecode.md §8.1).
-    vm->pc = pc;
-    vm->sp = sp;
-    vm_error_array_access(vm, bytecode[pc + 1], (uint16_t)stack[sp]);
+    save_state(vm, ip, next);
+    vm_error_array_access(vm, ip[1], (uint16_t)next[-1]);
     return RUN_ERROR;
 
 stack_overflow:
-    error = error_stack_overflow;
+    error = vm_error_stack_overflow;
     goto node_error;
 stack_underflow:
-    error = error_stack_underflow;
+    error = vm_error_stack_underflow;
     goto node_error;
-variables_out_of_bounds:
-    error = error_variables_bounds;
-    goto node_error;
-bytecode_out_of_bounds:
-    error = error_bytecode_bounds;
+unknown_bytecode:
+    error = vm_error_unknown_bytecode;
     goto node_error;
 unknown_operator:
-    error = error_unknown_operator;
+    error = vm_error_unknown_operator;
 node_error:
-    vm->pc = pc;
-    vm->sp = sp;
+    save_state(vm, ip, next);
     vm_error_node_specific(vm, error);
     return RUN_ERROR;
+}
+
+// A run with breakpoints set: one instruction at a time, each checked first.
+static enum run_outcome run_to_breakpoint(vm_state *vm, uint16_t budget)
+{
+    uint16_t done = 0;
+    enum run_outcome outcome;
+
+    for (;;) {
+        if (budget != 0 && done == budget)
+            return RUN_BUDGET_SPENT;
+        if (at_breakpoint(vm, vm->pc)) {
+            // EVENT_RUNNING stays set, as upstream reports it (flags 7).
+            vm->flags |= VM_FLAG_STEP_BY_STEP;
+            vm->callbacks->execution_state_changed(vm->context, vm->pc, vm->flags);
+            return RUN_BREAKPOINT;
+        }
+        outcome = execute(vm, 1, true);
+        if (outcome != RUN_BUDGET_SPENT)
+            return outcome;
+        done++;
+    }
 }
 
 bool vm_run(vm_state *vm, uint16_t step_budget)
 {
     enum run_outcome outcome;
 
-    if (!(vm->flags & VM_FLAG_EVENT_ACTIVE) || (vm->flags & VM_FLAG_STEP_BY_STEP))
+    // A refused program never leaves STEP_BY_STEP (vm_command_run); the
+    // rejection is checked again here, once per call, for callers that set
+    // the flags themselves.
+    if (!(vm->flags & VM_FLAG_EVENT_ACTIVE) || (vm->flags & VM_FLAG_STEP_BY_STEP) ||
+        vm->rejection != NULL)
         return false;
     vm->flags |= VM_FLAG_EVENT_RUNNING;
-    do
-        outcome = execute(vm, step_budget != 0 ? step_budget : UINT16_MAX, true);
-    while (outcome == RUN_BUDGET_SPENT && step_budget == 0);
+    if (vm->breakpoint_count != 0)
+        outcome = run_to_breakpoint(vm, step_budget);
+    else
+        do
+            outcome = execute(vm, step_budget != 0 ? step_budget : UINT16_MAX, true);
+        while (outcome == RUN_BUDGET_SPENT && step_budget == 0);
     if (outcome != RUN_BREAKPOINT)
         vm->flags &= (uint16_t)~VM_FLAG_EVENT_RUNNING;
     return true;
@@ -562,6 +656,10 @@ bool vm_step(vm_state *vm)
 {
     if (!(vm->flags & VM_FLAG_EVENT_ACTIVE))
         return false;
+    if (vm->rejection != NULL) {
+        vm_report_rejection(vm);
+        return true;
+    }
     execute(vm, 1, false);
     return true;
 }

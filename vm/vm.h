@@ -2,9 +2,11 @@
 // caller owns, reports to the node through callbacks, never touches hardware.
 //
 // One struct holds the whole state; there are no globals and no allocation,
-// so a host process can run hundreds of robots side by side. Every access the
-// bytecode makes is checked: a faulty program stops its event and is reported,
-// the VM stays usable.
+// so a host process can run hundreds of robots side by side. No bytecode can
+// make the VM reach outside its memory: a verifier checks each program when
+// it arrives (vm_reset), so that the run loop only checks what depends on
+// run-time values; a faulty program is refused or stops its event and is
+// reported, and the VM stays usable.
 
 #ifndef VM_H
 #define VM_H
@@ -73,7 +75,9 @@ typedef struct vm_native_table {
     uint16_t count;
 } vm_native_table;
 
-// Memory the caller gives the VM; it must outlive the VM.
+// Memory the caller gives the VM; it must outlive the VM. The bytecode is
+// the VM's: write it with vm_set_bytecode, or call vm_reset after writing it
+// directly, so that the verifier sees it before it runs.
 typedef struct vm_memory {
     uint16_t *bytecode;
     uint16_t bytecode_size;
@@ -96,10 +100,16 @@ struct vm_state {
     vm_native_table natives;
     const vm_callbacks *callbacks;
     void *context;
+    // The verifier's verdict on the bytecode (vm_reset): NULL when it may
+    // run, else why not (reported at rejection_pc when a host sends RUN or
+    // STEP).
+    const char *rejection;
+    uint16_t rejection_pc;
 };
 
 // Prepares a VM over `memory`: an empty event table (bytecode[0] = 0), all
-// variables zero, no event active (flags 0).
+// variables zero, no event active (flags 0). The stack memory is also the
+// verifier's scratch.
 void vm_init(vm_state *vm,
              const vm_memory *memory,
              uint16_t node_id,
@@ -139,6 +149,11 @@ static inline bool vm_is_event_active(const vm_state *vm)
 }
 
 // The debug commands of bytecode.md §6.4, each with its protocol answer.
+// vm_reset (and so vm_set_bytecode) verifies the bytecode and clears the
+// was-true bit of its conditional branches (`when` starts false). Events are
+// set up and answered as upstream does whatever the verdict (a program
+// arrives in chunks, the first ones incomplete), but a refused program never
+// runs: RUN or STEP reports why, at the faulty instruction, and stops.
 void vm_set_bytecode(vm_state *vm, uint16_t start, const uint16_t *words, uint16_t count);
 void vm_reset(vm_state *vm);
 void vm_command_run(vm_state *vm);
@@ -152,10 +167,6 @@ void vm_report_state(vm_state *vm);
 bool vm_breakpoint_set(vm_state *vm, uint16_t pc);
 void vm_breakpoint_clear(vm_state *vm, uint16_t pc);
 void vm_breakpoint_clear_all(vm_state *vm);
-
-// Clears the `was-true` bit of every conditional branch so that each `when`
-// starts as false (run by vm_reset; firmware also runs it on stored bytecode).
-void vm_reset_when_flags(vm_state *vm);
 
 // For natives and firmware: `length` variables from `address`, or NULL after
 // stopping the VM with an "out of variables bounds" error when they do not

@@ -2,36 +2,20 @@
 // execution, set breakpoints, deliver events (bytecode.md §6.3, §6.4, §7).
 // Each command sends the answer that protocol 5 hosts expect.
 
-#include "vm.h"
+#include "vm_internal.h"
 #include "vm_opcodes.h"
+
+#include <stddef.h>
 
 void vm_report_state(vm_state *vm)
 {
     vm->callbacks->execution_state_changed(vm->context, vm->pc, vm->flags);
 }
 
-void vm_reset_when_flags(vm_state *vm)
-{
-    uint16_t *bytecode = vm->memory.bytecode;
-    uint16_t size = vm->memory.bytecode_size;
-    uint16_t pc;
-
-    if (size == 0)
-        return;
-    // Code starts right after the event table (upstream starts at twice that,
-    // which skips early branches: bytecode.md §5.1).
-    for (pc = bytecode[0]; pc < size; pc = (uint16_t)(pc + vm_instruction_words(bytecode[pc]))) {
-        if ((bytecode[pc] >> VM_OPCODE_SHIFT) == VM_OP_CONDITIONAL_BRANCH)
-            bytecode[pc] &= (uint16_t)~VM_BRANCH_WAS_TRUE_BIT;
-        if (pc > UINT16_MAX - 3) // the next pc would wrap around
-            break;
-    }
-}
-
 void vm_reset(vm_state *vm)
 {
     vm->flags = VM_FLAG_STEP_BY_STEP;
-    vm_reset_when_flags(vm);
+    vm_verify(vm);
     // With STEP_BY_STEP set, setting up init reports (init address, 3).
     if (vm_setup_event(vm, VM_EVENT_INIT) == 0)
         vm_report_state(vm);
@@ -53,7 +37,11 @@ void vm_set_bytecode(vm_state *vm, uint16_t start, const uint16_t *words, uint16
 
 void vm_command_run(vm_state *vm)
 {
-    vm->flags &= (uint16_t)~VM_FLAG_STEP_BY_STEP;
+    if (vm->rejection != NULL) {
+        vm_report_rejection(vm);
+    } else {
+        vm->flags &= (uint16_t)~VM_FLAG_STEP_BY_STEP;
+    }
     vm_report_state(vm);
 }
 

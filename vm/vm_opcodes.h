@@ -21,30 +21,32 @@
 
 #include <stdint.h>
 
-// VM_OPCODE(name, code, words, stack effect, meaning). Stack effects of
-// NATIVE_CALL and SUB_CALL depend on the callee and are given as 0 here.
+// VM_OPCODE(name, code, words, (pops, pushes), meaning): the stack words an
+// instruction needs and those it leaves. NATIVE_CALL pops what its native
+// takes; SUB_CALL and SUB_RET count nothing, because the callee runs on a
+// stack of its own above the return address (see vm_verify.c).
 #define VM_OPCODE_LIST(X)                                                                          \
-    X(STOP, 0x0, 1, 0, "end the event")                                                            \
-    X(SMALL_IMMEDIATE, 0x1, 1, 1, "push the signed 12-bit operand")                                \
-    X(LARGE_IMMEDIATE, 0x2, 2, 1, "push word 1")                                                   \
-    X(LOAD, 0x3, 1, 1, "push V[operand]")                                                          \
-    X(STORE, 0x4, 1, -1, "V[operand] = pop")                                                       \
-    X(LOAD_INDIRECT, 0x5, 2, 0, "S[top] = V[operand + S[top]], index checked against word 1")      \
-    X(STORE_INDIRECT, 0x6, 2, -2, "V[operand + pop] = pop, index checked against word 1")          \
-    X(UNARY_ARITHMETIC, 0x7, 1, 0, "S[top] = op S[top]")                                           \
-    X(BINARY_ARITHMETIC, 0x8, 1, -1, "a = S[top-1], b = pop: S[top] = a op b")                     \
-    X(JUMP, 0x9, 1, 0, "pc += signed operand")                                                     \
-    X(CONDITIONAL_BRANCH, 0xA, 2, -2, "if not (a op b) pc += word 1, else pc += 2")                \
-    X(EMIT, 0xB, 3, 0, "send event operand with V[word 1 ...] of word 2 words")                    \
-    X(NATIVE_CALL, 0xC, 1, 0, "call native function operand; it pops its arguments")               \
-    X(SUB_CALL, 0xD, 1, 0, "push pc + 1, pc = operand")                                            \
-    X(SUB_RET, 0xE, 1, 0, "pc = pop")
+    X(STOP, 0x0, 1, (0, 0), "end the event")                                                       \
+    X(SMALL_IMMEDIATE, 0x1, 1, (0, 1), "push the signed 12-bit operand")                           \
+    X(LARGE_IMMEDIATE, 0x2, 2, (0, 1), "push word 1")                                              \
+    X(LOAD, 0x3, 1, (0, 1), "push V[operand]")                                                     \
+    X(STORE, 0x4, 1, (1, 0), "V[operand] = pop")                                                   \
+    X(LOAD_INDIRECT, 0x5, 2, (1, 1), "S[top] = V[operand + S[top]], index checked against word 1") \
+    X(STORE_INDIRECT, 0x6, 2, (2, 0), "V[operand + pop] = pop, index checked against word 1")      \
+    X(UNARY_ARITHMETIC, 0x7, 1, (1, 1), "S[top] = op S[top]")                                      \
+    X(BINARY_ARITHMETIC, 0x8, 1, (2, 1), "a = S[top-1], b = pop: S[top] = a op b")                 \
+    X(JUMP, 0x9, 1, (0, 0), "pc += signed operand")                                                \
+    X(CONDITIONAL_BRANCH, 0xA, 2, (2, 0), "if not (a op b) pc += word 1, else pc += 2")            \
+    X(EMIT, 0xB, 3, (0, 0), "send event operand with V[word 1 ...] of word 2 words")               \
+    X(NATIVE_CALL, 0xC, 1, (0, 0), "call native function operand; it pops its arguments")          \
+    X(SUB_CALL, 0xD, 1, (0, 0), "push pc + 1, pc = operand")                                       \
+    X(SUB_RET, 0xE, 1, (0, 0), "pc = pop")
 
 enum vm_opcode {
-#define VM_OPCODE_ENUM(name, code, words, effect, meaning) VM_OP_##name = code,
+#define VM_OPCODE_ENUM(name, code, words, stack, meaning) VM_OP_##name = code,
     VM_OPCODE_LIST(VM_OPCODE_ENUM)
 #undef VM_OPCODE_ENUM
-      VM_OP_INVALID = 0xF // never produced by a compiler: a run-time error
+      VM_OP_INVALID = 0xF // never produced by a compiler: the verifier refuses it
 };
 
 // Binary operators (bits 7..0 of BINARY_ARITHMETIC and CONDITIONAL_BRANCH):
@@ -103,7 +105,7 @@ enum vm_unary_operator {
 static inline uint16_t vm_instruction_words(uint16_t word)
 {
     switch (word >> VM_OPCODE_SHIFT) {
-#define VM_OPCODE_WORDS(name, code, words, effect, meaning)                                        \
+#define VM_OPCODE_WORDS(name, code, words, stack, meaning)                                         \
     case code: return words;
         VM_OPCODE_LIST(VM_OPCODE_WORDS)
 #undef VM_OPCODE_WORDS

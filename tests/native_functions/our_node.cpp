@@ -83,9 +83,14 @@ std::vector<int16_t> OurNode::get(uint16_t address, uint16_t count) const
 void OurNode::run_init(const std::vector<uint16_t> &bytecode)
 {
     vm.memory.variables = variables.data();
-    std::copy(bytecode.begin(), bytecode.end(), bytecode_.begin());
-    vm.flags = 0;
-    if (vm_setup_event(&vm, init_event) == 0)
+    if (bytecode.size() > bytecode_.size())
+        throw std::invalid_argument("bytecode too long");
+    // Uploaded as a host does, so that the verifier sees it; then run.
+    vm_set_bytecode(&vm, 0, bytecode.data(), static_cast<uint16_t>(bytecode.size()));
+    if (vm.rejection != nullptr)
+        throw std::invalid_argument(std::string("bytecode refused: ") + vm.rejection);
+    if (!vm_is_event_active(&vm) || vm.pc != vm_event_address(&vm, init_event))
         throw std::invalid_argument("bytecode does not handle init");
+    vm.flags = VM_FLAG_EVENT_ACTIVE;
     vm_run(&vm, 0);
 }

@@ -95,10 +95,13 @@ void DspNode::load_and_run_init(const std::vector<uint16_t> &image)
 {
     if (image.size() > bytecode_.size())
         throw std::invalid_argument("bytecode too long");
-    std::copy(image.begin(), image.end(), bytecode_.begin());
-    vm.flags = 0;
-    if (vm_setup_event(&vm, init_event) == 0)
+    // Uploaded as a host does, so that the verifier sees it; then run.
+    vm_set_bytecode(&vm, 0, image.data(), static_cast<uint16_t>(image.size()));
+    if (vm.rejection != nullptr)
+        throw std::invalid_argument(std::string("bytecode refused: ") + vm.rejection);
+    if (!vm_is_event_active(&vm) || vm.pc != vm_event_address(&vm, init_event))
         throw std::invalid_argument("bytecode does not handle init");
+    vm.flags = VM_FLAG_EVENT_ACTIVE;
     vm_run(&vm, 0);
 }
 

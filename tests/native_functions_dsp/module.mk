@@ -1,9 +1,12 @@
 # Tests of the DSP natives (native_functions/nat_dsp*.c): against expectations
 # computed independently in double precision, through direct calls and
-# through the VM's NATIVE_CALL.
+# through the VM's NATIVE_CALL; dsp.fft also bit for bit against a model, with
+# a deliberately faulty copy (dsp_fft_truncating_mutant.c) it must catch.
 TESTS += dsp_natives_test
 dsp_natives_test_SOURCES := tests/native_functions_dsp/dsp_node.cpp \
                             tests/native_functions_dsp/dsp_fft_test.cpp \
+                            tests/native_functions_dsp/dsp_fft_exact_test.cpp \
+                            tests/native_functions_dsp/dsp_fft_truncating_mutant.c \
                             tests/native_functions_dsp/dsp_filter_test.cpp \
                             tests/native_functions_dsp/dsp_correlation_test.cpp \
                             tests/native_functions_dsp/dsp_contract_test.cpp \

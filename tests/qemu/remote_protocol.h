@@ -77,7 +77,6 @@ enum remote_call {
     REMOTE_VM_BREAKPOINT_SET = 12,   /* pc -> stored */
     REMOTE_VM_BREAKPOINT_CLEAR = 13, /* pc */
     REMOTE_VM_BREAKPOINT_CLEAR_ALL = 14,
-    REMOTE_VM_RESET_WHEN_FLAGS = 15,
     REMOTE_VM_EVENT_ADDRESS = 16, /* event -> address */
     /* node.h */
     REMOTE_NODE_RECEIVE = 32,      /* now (u32), count, bytes -> taken */

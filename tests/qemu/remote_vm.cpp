@@ -210,11 +210,6 @@ void vm_breakpoint_clear_all(vm_state *vm)
     call(vm, REMOTE_VM_BREAKPOINT_CLEAR_ALL);
 }
 
-void vm_reset_when_flags(vm_state *vm)
-{
-    call(vm, REMOTE_VM_RESET_WHEN_FLAGS);
-}
-
 // Natives run on the target only.
 int16_t *vm_variables(vm_state *, uint16_t, uint16_t)
 {

@@ -3,6 +3,20 @@
 #include <algorithm>
 #include <sstream>
 
+// Under AddressSanitizer the guard words are also poisoned, so that a read
+// outside the VM's arrays is caught as well as a write (gcc and clang name
+// the feature differently).
+#if defined(__SANITIZE_ADDRESS__)
+#define HARNESS_POISONS_GUARDS 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define HARNESS_POISONS_GUARDS 1
+#endif
+#endif
+#ifdef HARNESS_POISONS_GUARDS
+#include <sanitizer/asan_interface.h>
+#endif
+
 namespace test_support
 {
 
@@ -156,6 +170,28 @@ void fill_guards(std::vector<T> &words, size_t guard, uint16_t pattern)
     }
 }
 
+// Marks the guard words at both ends of `words` as out of bounds (true) or
+// readable again, when AddressSanitizer is there to watch them.
+template<typename T>
+void poison_guards(const std::vector<T> &words, size_t guard, bool poisoned)
+{
+#ifdef HARNESS_POISONS_GUARDS
+    const size_t bytes = guard * sizeof(T);
+    const T *last_guard = words.data() + words.size() - guard;
+    if (poisoned) {
+        ASAN_POISON_MEMORY_REGION(words.data(), bytes);
+        ASAN_POISON_MEMORY_REGION(last_guard, bytes);
+    } else {
+        ASAN_UNPOISON_MEMORY_REGION(words.data(), bytes);
+        ASAN_UNPOISON_MEMORY_REGION(last_guard, bytes);
+    }
+#else
+    (void)words;
+    (void)guard;
+    (void)poisoned;
+#endif
+}
+
 template<typename T>
 bool guards_hold(const std::vector<T> &words, size_t guard, uint16_t pattern)
 {
@@ -207,6 +243,7 @@ VmHarness::VmHarness(const VmSizes &sizes, uint16_t node_id, const vm_native_tab
     fill_guards(bytecode_, GUARD_WORDS, GUARD_PATTERN);
     fill_guards(variables_, GUARD_WORDS, GUARD_PATTERN);
     fill_guards(stack_, GUARD_WORDS, GUARD_PATTERN);
+    poison_all_guards(true);
     vm_memory memory = { bytecode(), sizes.bytecode, variables(), sizes.variables,
                          stack(),    sizes.stack,    sizes.args };
     vm_init(&vm, &memory, node_id, &natives, &harness_callbacks, this);
@@ -218,11 +255,26 @@ void VmHarness::load(const std::vector<uint16_t> &words)
     log.clear();
 }
 
+VmHarness::~VmHarness()
+{
+    poison_all_guards(false);
+}
+
+void VmHarness::poison_all_guards(bool poisoned) const
+{
+    poison_guards(bytecode_, GUARD_WORDS, poisoned);
+    poison_guards(variables_, GUARD_WORDS, poisoned);
+    poison_guards(stack_, GUARD_WORDS, poisoned);
+}
+
 bool VmHarness::guards_intact() const
 {
-    return guards_hold(bytecode_, GUARD_WORDS, GUARD_PATTERN) &&
-           guards_hold(variables_, GUARD_WORDS, GUARD_PATTERN) &&
-           guards_hold(stack_, GUARD_WORDS, GUARD_PATTERN);
+    poison_all_guards(false);
+    bool intact = guards_hold(bytecode_, GUARD_WORDS, GUARD_PATTERN) &&
+                  guards_hold(variables_, GUARD_WORDS, GUARD_PATTERN) &&
+                  guards_hold(stack_, GUARD_WORDS, GUARD_PATTERN);
+    poison_all_guards(true);
+    return intact;
 }
 
 } // namespace test_support

@@ -1,6 +1,7 @@
 // A VM under test: its memory (with guard words around every array, so that
-// a stray write shows), a log of every message it sends, and a few tiny
-// native functions that exercise the NATIVE_CALL mechanism.
+// a stray write shows, and under AddressSanitizer a stray read too), a log of
+// every message it sends, and a few tiny native functions that exercise the
+// NATIVE_CALL mechanism.
 
 #pragma once
 
@@ -63,6 +64,7 @@ class VmHarness
                        const vm_native_table &natives = test_native_table());
     VmHarness(const VmHarness &) = delete;
     VmHarness &operator=(const VmHarness &) = delete;
+    ~VmHarness();
 
     vm_state vm;
     std::vector<VmMessage> log;
@@ -91,6 +93,8 @@ class VmHarness
     bool guards_intact() const;
 
   private:
+    void poison_all_guards(bool poisoned) const;
+
     static constexpr size_t GUARD_WORDS = 8;
     static constexpr uint16_t GUARD_PATTERN = 0xA5C3;
 

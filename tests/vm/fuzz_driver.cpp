@@ -66,7 +66,25 @@ std::unique_ptr<VmHarness> clone(VmHarness &original)
     copy->vm.breakpoint_count = original.vm.breakpoint_count;
     std::copy_n(original.vm.breakpoints, VM_MAX_BREAKPOINTS, copy->vm.breakpoints);
     copy->vm.random_state = original.vm.random_state;
+    // The copied bytecode is the one the original verified.
+    copy->vm.rejection = original.vm.rejection;
+    copy->vm.rejection_pc = original.vm.rejection_pc;
     return copy;
+}
+
+// The texts of faults that only the verifier finds; the run loop never
+// checks them (vm/vm.c).
+bool is_verifier_fault(const std::string &text)
+{
+    for (const char *fault : { "out of bytecode bounds",
+                               "unknown bytecode",
+                               "unknown operator",
+                               "unknown native function",
+                               "emitted event too large",
+                               "invalid jump" })
+        if (text == fault)
+            return true;
+    return false;
 }
 
 std::string same_state(VmHarness &a, VmHarness &b, size_t a_log_from)
@@ -148,6 +166,12 @@ std::string FuzzRun::check(const std::string &command, size_t log_from, bool aft
         }
         if (message.kind == VmMessage::NODE_ERROR && message.text.size() > VM_NODE_ERROR_LENGTH)
             problem << "node error text too long";
+        // Faults the verifier rules out are reported only for a program it
+        // refused (by RUN and STEP): a run that meets one ran unverified code.
+        if (message.kind == VmMessage::NODE_ERROR && is_verifier_fault(message.text) &&
+            (vm.rejection == nullptr || message.text != vm.rejection ||
+             message.pc != vm.rejection_pc))
+            problem << "a run reported what the verifier rules out: " << describe(message);
     }
     if (problem.str().empty() && stopped_by_error && after_run && vm.flags != VM_FLAG_STEP_BY_STEP)
         problem << "flags " << vm.flags << " after an error";
@@ -193,6 +217,10 @@ std::string FuzzRun::run()
     std::string problem = check("SET_BYTECODE", 0, false);
     if (!problem.empty())
         return problem;
+    if (stats_) {
+        stats_->uploads++;
+        stats_->accepted_uploads += vm->rejection == nullptr && vm_is_event_active(vm);
+    }
     vm_command_run(vm);
     if (!(problem = run_with_budget(FUZZ_MAX_BUDGET)).empty())
         return problem;

@@ -31,6 +31,8 @@ struct FuzzStats {
     unsigned messages[test_support::VmMessage::NODE_ERROR + 1] = {};
     unsigned runs = 0;
     unsigned run_step_comparisons = 0;
+    unsigned uploads = 0;
+    unsigned accepted_uploads = 0; // the verifier accepted the image, init is ready to run
 };
 
 // Runs `fuzz_case`; returns the first broken invariant, or "" when all held.

@@ -46,7 +46,17 @@ class CaseMaker
     FuzzCase next(bool mutate_valid)
     {
         FuzzCase fuzz_case;
-        fuzz_case.image = mutate_valid ? mutated_program() : random_image();
+        // Valid programs: a third as they are, a third with values changed
+        // (which the verifier accepts when they stay in range: the run loop,
+        // which trusts it, meets odd values), a third broken anywhere.
+        if (!mutate_valid)
+            fuzz_case.image = random_image();
+        else if (chance(33))
+            fuzz_case.image = pool_[uniform(0, VALID_PROGRAM_POOL - 1)];
+        else if (chance(50))
+            fuzz_case.image = program_with_new_values();
+        else
+            fuzz_case.image = mutated_program();
         static const uint16_t variable_sizes[] = { 0, 1, 2, 3, 8, 34, 64, 128, 300 };
         static const uint16_t stack_sizes[] = { 0, 1, 2, 3, 8, 32 };
         static const uint16_t args_sizes[] = { 0, 1, 8, 32, 300 };
@@ -125,6 +135,69 @@ class CaseMaker
         return image;
     }
 
+    // A valid program whose instructions keep their kinds and lengths but
+    // get other operands: addresses, sizes, immediates, operators, natives,
+    // event ids; mostly in range, sometimes just past it, so that a verifier
+    // that let one through would have the loop meet it.
+    std::vector<uint16_t> program_with_new_values()
+    {
+        std::vector<uint16_t> image = pool_[uniform(0, VALID_PROGRAM_POOL - 1)];
+        std::vector<size_t> starts;
+        for (size_t pc = image[0]; pc < image.size(); pc += vm_instruction_words(image[pc]))
+            starts.push_back(pc);
+        const int variables = vm_tests::RandomProgramLayout::VARIABLES;
+        const int beyond = chance(90) ? 0 : 8; // how far past its range a value may go
+        for (int m = uniform(1, 6); m > 0; m--) {
+            size_t pc =
+              starts[static_cast<size_t>(uniform(0, static_cast<int>(starts.size()) - 1))];
+            uint16_t opcode = image[pc] >> VM_OPCODE_SHIFT;
+            auto set_operand = [&](int operand) {
+                image[pc] = static_cast<uint16_t>(opcode << 12 | (operand & VM_OPERAND_MASK));
+            };
+            switch (opcode) {
+            case VM_OP_SMALL_IMMEDIATE: set_operand(uniform(0, 0xFFF)); break;
+            case VM_OP_NATIVE_CALL: // the harness' table has 4 natives
+                set_operand(uniform(0, test_support::NATIVE_YIELD - 1 + beyond));
+                break;
+            case VM_OP_EMIT:
+                set_operand(uniform(0, 0xFFF));
+                image[pc + 1] = static_cast<uint16_t>(uniform(0, variables + beyond));
+                image[pc + 2] = static_cast<uint16_t>(
+                  beyond ? uniform(VM_MAX_EVENT_WORDS - 4, VM_MAX_EVENT_WORDS + 4)
+                         : uniform(0, 40));
+                break;
+            case VM_OP_LOAD:
+            case VM_OP_STORE: set_operand(uniform(0, variables - 1 + beyond)); break;
+            case VM_OP_LARGE_IMMEDIATE:
+                image[pc + 1] = static_cast<uint16_t>(interesting_word());
+                break;
+            case VM_OP_LOAD_INDIRECT:
+            case VM_OP_STORE_INDIRECT: {
+                int base = uniform(0, variables);
+                set_operand(base);
+                image[pc + 1] = static_cast<uint16_t>(uniform(0, variables - base + beyond));
+                break;
+            }
+            case VM_OP_UNARY_ARITHMETIC:
+                set_operand(uniform(0, VM_UNARY_NOT - 1 + (beyond ? 2 : 0)));
+                break;
+            case VM_OP_BINARY_ARITHMETIC:
+            case VM_OP_CONDITIONAL_BRANCH:
+                set_operand(uniform(0, 3) << 8 |
+                            uniform(0, beyond ? 0xFF : VM_BINARY_OPERATOR_COUNT - 1));
+                break;
+            default: break;
+            }
+        }
+        return image;
+    }
+
+    int interesting_word()
+    {
+        static const int words[] = { -32768, -32767, -1, 0, 1, 2, 15, 16, 17, 31, 32, 32767 };
+        return chance(50) ? words[uniform(0, std::size(words) - 1)] : uniform(-32768, 32767);
+    }
+
     std::vector<uint16_t> mutated_program()
     {
         std::vector<uint16_t> image = pool_[uniform(0, VALID_PROGRAM_POOL - 1)];
@@ -167,9 +240,14 @@ TEST(VmFuzz, RandomImagesAndCommandsKeepTheVmSafe)
               << " compared with vm_step), messages:";
     for (unsigned kind = 0; kind <= VmMessage::NODE_ERROR; kind++)
         std::cout << " " << stats.messages[kind];
-    std::cout << " (emit, state, killed, array, division, node error)\n";
+    std::cout << " (emit, state, killed, array, division, node error); " << stats.accepted_uploads
+              << " of " << stats.uploads << " images accepted by the verifier\n";
     for (unsigned kind = 0; kind <= VmMessage::NODE_ERROR; kind++)
         EXPECT_GT(stats.messages[kind], CASE_COUNT / 100) << "message kind " << kind;
+    // Enough images pass the verifier for the run loop, which trusts it, to
+    // be fuzzed too, and enough are refused for the verifier to be.
+    EXPECT_GT(stats.accepted_uploads, stats.uploads / 10);
+    EXPECT_LT(stats.accepted_uploads, stats.uploads * 4 / 5);
 }
 
 // The byte decoder of the libFuzzer target, on inputs of every length.

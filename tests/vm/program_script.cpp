@@ -5,6 +5,8 @@
 
 #include "tests/vm/program_script.hpp"
 
+#include <algorithm>
+#include <iterator>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -29,7 +31,7 @@ struct Directive {
     std::string rest;
 };
 
-const char *const keywords[] = { "memory", "set",  "budget", "trace",    "run",  "receive",
+const std::string keywords[] = { "memory", "set",  "budget", "trace",    "run",  "receive",
                                  "reset",  "stop", "pause",  "continue", "step", "expect" };
 
 std::string trim(const std::string &text)
@@ -339,16 +341,16 @@ std::vector<std::string> ScriptRunner::run()
         std::istringstream words(t.substr(1));
         std::string keyword;
         words >> keyword;
-        for (const char *known : keywords) {
-            if (keyword != known)
-                continue;
-            std::string rest;
-            std::getline(words, rest);
-            Directive directive{ number, keyword, rest };
-            bool is_setup =
-              keyword == "memory" || keyword == "set" || keyword == "budget" || keyword == "trace";
-            (is_setup ? setup : steps).push_back(directive);
-        }
+        // A misspelt keyword must not turn a check into nothing.
+        if (std::find(std::begin(keywords), std::end(keywords), keyword) == std::end(keywords))
+            return { name_ + ":" + std::to_string(number) + ": unknown directive '# " + keyword +
+                     "' (prose comments start with ';')" };
+        std::string rest;
+        std::getline(words, rest);
+        Directive directive{ number, keyword, rest };
+        bool is_setup =
+          keyword == "memory" || keyword == "set" || keyword == "budget" || keyword == "trace";
+        (is_setup ? setup : steps).push_back(directive);
     }
 
     test_support::Program program;

@@ -54,6 +54,26 @@ std::string test_name(const testing::TestParamInfo<std::string> &info)
 
 INSTANTIATE_TEST_SUITE_P(Programs, ProgramFile, testing::ValuesIn(program_files()), test_name);
 
+// A misspelt `# expect` must fail the file, not drop the check: the same
+// wrong expectation fails when spelt right and is refused when misspelt.
+TEST(ProgramScript, RefusesAnUnknownDirective)
+{
+    const std::string program =
+      "event init start\nstart:\n    SMALL_IMMEDIATE 5\n    STORE 10\n    STOP\n";
+    const auto right = vm_tests::run_program_script("right", program + "# expect var[10] = 6\n");
+    ASSERT_EQ(right.size(), 1u);
+    EXPECT_NE(right[0].find("var[10] is 5, expected 6"), std::string::npos) << right[0];
+
+    const auto misspelt =
+      vm_tests::run_program_script("misspelt", program + "# exepct var[10] = 6\n");
+    ASSERT_EQ(misspelt.size(), 1u);
+    EXPECT_NE(misspelt[0].find("misspelt:6: unknown directive '# exepct'"), std::string::npos)
+      << misspelt[0];
+
+    EXPECT_EQ(vm_tests::run_program_script("empty", program + "#\n").size(), 1u)
+      << "a bare # is no directive either";
+}
+
 // The folder must hold the programs: an empty list would pass silently.
 TEST(ProgramFiles, AreFound)
 {

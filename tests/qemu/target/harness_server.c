@@ -405,8 +405,7 @@ static uint16_t call_length(const uint8_t *payload, uint16_t length)
     case REMOTE_VM_COMMAND_STEP:
     case REMOTE_VM_COMMAND_STOP:
     case REMOTE_VM_REPORT_STATE:
-    case REMOTE_VM_BREAKPOINT_CLEAR_ALL:
-    case REMOTE_VM_RESET_WHEN_FLAGS: needed = 1; break;
+    case REMOTE_VM_BREAKPOINT_CLEAR_ALL: needed = 1; break;
     case REMOTE_VM_SETUP_EVENT:
     case REMOTE_VM_EVENT_ADDRESS:
     case REMOTE_VM_RUN:
@@ -471,7 +470,6 @@ static uint16_t run_call(server *s, const uint8_t *payload)
     case REMOTE_VM_BREAKPOINT_SET: return vm_breakpoint_set(vm, get16(arguments));
     case REMOTE_VM_BREAKPOINT_CLEAR: vm_breakpoint_clear(vm, get16(arguments)); return 0;
     case REMOTE_VM_BREAKPOINT_CLEAR_ALL: vm_breakpoint_clear_all(vm); return 0;
-    case REMOTE_VM_RESET_WHEN_FLAGS: vm_reset_when_flags(vm); return 0;
     case REMOTE_NODE_RECEIVE:
         return node_receive(&s->node, arguments + 6, get16(arguments + 4), get32(arguments));
     case REMOTE_NODE_RECEIVE_BYTE:

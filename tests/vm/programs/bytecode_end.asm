@@ -1,5 +1,6 @@
-; Code that runs off the end of the bytecode (size 7, no STOP) stops the VM
-; with "out of bytecode bounds" (bytecode.md §8.5) after its last word ran.
+; Code that would run off the end of the bytecode (size 7, no STOP) is
+; refused by the verifier when it arrives: RUN reports "out of bytecode
+; bounds" (bytecode.md §8.5) at its last instruction, and nothing runs.
 # memory bytecode=7
 event init off_end
 off_end:
@@ -7,6 +8,7 @@ off_end:
     STORE 40
     SMALL_IMMEDIATE 2
     STORE 41            ; at 6, the last word
-# expect error node_specific pc=* "out of bytecode bounds"
-# expect var[40] = [1, 2]
+# expect error node_specific pc=6 "out of bytecode bounds"
+# expect var[40] = [0, 0]
 # expect flags 2
+# expect pc 6

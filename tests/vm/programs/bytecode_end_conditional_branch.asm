@@ -1,6 +1,7 @@
-; CONDITIONAL_BRANCH cut by the end of the bytecode (size 6): its operand
-; words would be read past the array, so the VM stops with "out of
-; bytecode bounds" (bytecode.md §8.5) before doing anything.
+; CONDITIONAL_BRANCH cut by the end of the bytecode (size 6): its operand words
+; would lie past the array. The verifier refuses the program when it
+; arrives; RUN reports "out of bytecode bounds" at the cut instruction
+; (bytecode.md §8.5) and nothing runs.
 # memory bytecode=6
 event init start
 start:
@@ -8,6 +9,6 @@ start:
     SMALL_IMMEDIATE 5
     .word 0xA00A
 # set var[40] = 5
-# expect error node_specific pc=* "out of bytecode bounds"
+# expect error node_specific pc=5 "out of bytecode bounds"
 # expect flags 2
 # expect var[40] = 5

@@ -9,7 +9,7 @@ start:
     LOAD_INDIRECT 50 4
     STORE 41
     LOAD 60             ; index from a variable: 2
-    LOAD_INDIRECT 50 0xFFFF
+    LOAD_INDIRECT 50 4
     STORE 42
     SMALL_IMMEDIATE 1
     LOAD_INDIRECT 50 2

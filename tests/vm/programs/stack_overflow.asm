@@ -32,10 +32,13 @@ call:
     SMALL_IMMEDIATE 2
     SMALL_IMMEDIATE 3
     SMALL_IMMEDIATE 4
-    SUB_CALL 35         ; at 34
+    SUB_CALL leaf       ; at 34: no room for the return address
     STOP
 recursion:
     SUB_CALL recursion  ; at 36: the fifth call overflows
+    SUB_RET
+leaf:
+    SUB_RET
 # expect error node_specific pc=15 "stack overflow"
 # expect flags 2
 # expect sp 3

@@ -1,31 +1,25 @@
 ; The reset-when-flags pass (§5.1) clears the was-true bit of every branch,
 ; walking from B[0], the first code word, instruction by instruction. The
 ; image is uploaded with was-true bits already set. Upstream starts the walk
-; at 2 * B[0] + 1 = 7 and so misses the `when` at 3 (§11): ours must not.
-; Operand words that look like branches (0xA30C) must be left alone, which
-; they are only if the walk follows the instruction lengths.
+; at 2 * B[0] + 1 = 7 and so misses the `when` at 5 (§11): ours must not.
+; An operand word that looks like a branch (0xA30C) must be left alone,
+; which it is only if the walk follows the instruction lengths.
 event 0 handler
-check:
-    CONDITIONAL_BRANCH BIGGER_THAN skip when was_true   ; at 3
+handler:
+    LOAD 2                                              ; at 3
+    SMALL_IMMEDIATE 0
+    CONDITIONAL_BRANCH BIGGER_THAN skip when was_true   ; at 5
     LOAD 40
     SMALL_IMMEDIATE 1
     BINARY_ARITHMETIC ADD
     STORE 40
 skip:
-    JUMP after
-handler:
-    LOAD 2
-    SMALL_IMMEDIATE 0
-    JUMP check
-after:
-    LARGE_IMMEDIATE 0xA30C
+    LARGE_IMMEDIATE 0xA30C                              ; at 11, its operand at 12
     STORE 42
-    SMALL_IMMEDIATE 1
-    LOAD_INDIRECT 2 0xA30C
     EMIT 0xA30 0 0
     LOAD 2
     SMALL_IMMEDIATE 0
-    CONDITIONAL_BRANCH BIGGER_THAN plain was_true     ; at 24, an `if`: was-true ignored
+    CONDITIONAL_BRANCH BIGGER_THAN plain was_true       ; at 19, an `if`: was-true ignored
     LOAD 41
     SMALL_IMMEDIATE 1
     BINARY_ARITHMETIC ADD
@@ -33,7 +27,7 @@ after:
 plain:
     LOAD 2
     SMALL_IMMEDIATE 0
-    CONDITIONAL_BRANCH BIGGER_THAN done when was_true  ; at 32
+    CONDITIONAL_BRANCH BIGGER_THAN done when was_true   ; at 27
     LOAD 43
     SMALL_IMMEDIATE 1
     BINARY_ARITHMETIC ADD
@@ -41,21 +35,20 @@ plain:
 done:
     STOP
 ; after the upload (a RESET), both `when` words are cleared
-# expect bytecode[3] = 0xA10C
-# expect bytecode[32] = 0xA10C
-# expect bytecode[14] = 0xA30C
-# expect bytecode[18] = 0xA30C
+# expect bytecode[5] = 0xA10C
+# expect bytecode[27] = 0xA10C
+# expect bytecode[12] = 0xA30C
 # receive 0 source 1 [1]
 # expect emit 2608 []
 # expect var[40] = [1, 1, 0xA30C, 1]
 # receive 0 source 1 [1]
 # expect emit 2608 []
 # expect var[40] = [1, 2, 0xA30C, 1]
-# expect bytecode[3] = 0xA30C
+# expect bytecode[5] = 0xA30C
 # reset
-# expect bytecode[3] = 0xA10C
-# expect bytecode[32] = 0xA10C
-# expect bytecode[24] = 0xA00C
+# expect bytecode[5] = 0xA10C
+# expect bytecode[27] = 0xA10C
+# expect bytecode[19] = 0xA00C
 # receive 0 source 1 [1]
 # expect emit 2608 []
 # expect var[40] = [2, 3, 0xA30C, 2]
