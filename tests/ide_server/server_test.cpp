@@ -47,7 +47,7 @@ class Robots
     void start()
     {
         process_ = std::make_unique<console_test::ReferenceProgram>(
-          std::vector<std::string>{ console_test::EMULATOR_PATH,
+          std::vector<std::string>{ console_test::program_path("epuck-emu"),
                                     "--port",
                                     std::to_string(port_),
                                     "--robots",
