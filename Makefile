@@ -24,6 +24,11 @@ CXX := g++
 WARNINGS := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wundef
 C_STANDARD := -std=gnu99
 CXX_STANDARD := -std=c++20
+# Standalone asio (not Boost's), one way in every file: its aligned
+# allocation would otherwise depend on which standard headers a file
+# includes first, and memory allocated in one file could be freed with the
+# wrong function in another.
+CXX_DEFINES := -DASIO_STANDALONE -DASIO_DISABLE_STD_ALIGNED_ALLOC
 INCLUDES := -I. -Ivm -Inative_functions
 # Every build names its target's one configuration header (docs/porting.md);
 # the host variants are the host target, the simulated e-puck.
@@ -69,7 +74,7 @@ $(BUILD)/$(1)/obj/%.o: %.c | $(DEPS_STAMP)
 
 $(BUILD)/$(1)/obj/%.o: %.cpp | $(DEPS_STAMP)
 	@mkdir -p $$(@D)
-	$$(CXX) $(CXX_STANDARD) $(WARNINGS) $$($(1)_FLAGS) $$(INCLUDES) $$(EXTRA_CFLAGS_$$*) -MMD -MP -c $$< -o $$@
+	$$(CXX) $(CXX_STANDARD) $(CXX_DEFINES) $(WARNINGS) $$($(1)_FLAGS) $$(INCLUDES) $$(EXTRA_CFLAGS_$$*) -MMD -MP -c $$< -o $$@
 endef
 $(foreach v,$(VARIANTS),$(eval $(call VARIANT_RULES,$(v))))
 
@@ -137,6 +142,10 @@ cross-check: | $(CROSS_DEPS_STAMP)
 # (fuzzing with clang): `make -s sources-aseba_natives`.
 sources-%:
 	@echo $($*_SOURCES)
+
+# A variable of this Makefile, for the same scripts: `make -s print-CXX_DEFINES`.
+print-%:
+	@echo $($*)
 
 # Every libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan.
 FUZZ_SECONDS ?= 60

@@ -11,6 +11,8 @@ shift 2
 
 # The project's libraries, as the Makefile lists them.
 library() { make -s --no-print-directory "sources-$1"; }
+# shellcheck disable=SC2207 # the definitions are words
+cxx_defines=($(make -s --no-print-directory print-CXX_DEFINES))
 vm_sources=$(library aseba_vm)
 natives_sources="$vm_sources $(library aseba_natives)"
 compiler_sources="$natives_sources $(library aseba_compiler)"
@@ -63,7 +65,7 @@ for target in "${targets[@]}"; do
         *.c) clang -std=gnu99 -Wall -Wextra -Werror "${sanitize[@]}" -fsanitize=fuzzer-no-link \
                  -DVM_USE_COMPUTED_GOTO=1 \
                  "${includes[@]}" -c "$source" -o "$object" ;;
-        *.cpp) clang++ -std=c++20 -Wall -Wextra -Werror "${sanitize[@]}" \
+        *.cpp) clang++ -std=c++20 "${cxx_defines[@]}" -Wall -Wextra -Werror "${sanitize[@]}" \
                  -fsanitize=fuzzer-no-link "${includes[@]}" -c "$source" -o "$object" ;;
         esac
         objects+=("$object")

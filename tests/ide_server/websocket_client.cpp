@@ -1,8 +1,6 @@
 // websocketpp's client, in a thread of its own. C++17, like the server's
 // web_server.cpp, for the same reason.
 
-#define ASIO_STANDALONE
-
 #include "websocket_client.hpp"
 
 #include <condition_variable>

@@ -398,7 +398,7 @@ void IdeServer::on_network(std::function<Json(client::Network &)> work,
           Json result;
           std::string error;
           if (network == nullptr) {
-              error = "the robots are not connected (the IDE keeps trying)";
+              error = "the IDE is stopping";
           } else {
               try {
                   result = work(*network);

@@ -3,6 +3,7 @@
 #include "network_worker.hpp"
 
 #include <algorithm>
+#include <iostream>
 
 #include <asio/post.hpp>
 
@@ -36,9 +37,22 @@ NetworkWorker::NetworkWorker(asio::io_context &reports_context,
   , targets_(std::move(targets))
   , reports_(std::make_shared<const NetworkReports>(std::move(reports)))
   , answer_timeout_(answer_timeout)
+  , network_(std::make_unique<client::Network>(answer_timeout))
 {
-    for (const std::string &target : targets_)
-        links_.push_back(LinkStatus{ target, false, "connecting" });
+    network_->set_listener([this](const client::ReceivedFrame &frame) { heard_.push_back(frame); });
+    network_->set_link_listener(
+      [this](size_t target, client::LinkState state, const std::string &reason) {
+          links_.at(target).up = state == client::LinkState::up;
+          links_.at(target).error = reason;
+      });
+    // Targets that cannot be reached now are tried again by the Network;
+    // only a malformed target string throws, before the thread starts.
+    for (const std::string &target : targets_) {
+        size_t index = network_->connect(target, client::LinkPolicy::reconnect);
+        links_.push_back(LinkStatus{ target,
+                                     network_->link_state(index) == client::LinkState::up,
+                                     network_->link_error(index) });
+    }
     thread_ = std::thread([this] { run(); });
 }
 
@@ -48,8 +62,9 @@ NetworkWorker::~NetworkWorker()
         std::lock_guard lock(mutex_);
         stopping_ = true;
     }
-    wake_.notify_all();
+    network_->wake();
     thread_.join();
+    network_.reset();
 }
 
 void NetworkWorker::submit(NetworkTask task)
@@ -58,7 +73,7 @@ void NetworkWorker::submit(NetworkTask task)
         std::lock_guard lock(mutex_);
         tasks_.push_back(std::move(task));
     }
-    wake_.notify_all();
+    network_->wake();
 }
 
 void NetworkWorker::watch(std::map<NodeKey, uint16_t> words)
@@ -78,80 +93,38 @@ void NetworkWorker::report(Function &&function)
 
 void NetworkWorker::run()
 {
+    report_links();
     while (true) {
         {
             std::lock_guard lock(mutex_);
             if (stopping_)
                 break;
         }
-        if (!network_) {
-            connect();
-            if (!network_) {
-                run_tasks(); // each learns that the network is down
-                std::unique_lock lock(mutex_);
-                wake_.wait_for(
-                  lock, RECONNECT_PERIOD, [this] { return stopping_ || !tasks_.empty(); });
-                continue;
-            }
-        }
         try {
-            network_->poll(POLL_PERIOD);
+            // Until the next variables are due, or a task or a frame comes.
+            auto until_variables =
+              std::chrono::ceil<client::Milliseconds>(next_variables_read_ - client::Clock::now());
+            network_->poll(std::clamp(
+              until_variables, client::Milliseconds(1), client::Milliseconds(VARIABLES_PERIOD)));
             network_->keep_alive();
             run_tasks();
             refresh_variables();
-            report_robots();
-            if (!heard_.empty())
-                report([frames = std::move(heard_)](const NetworkReports &reports) mutable {
-                    reports.frames(std::move(frames));
-                });
-            heard_.clear();
         } catch (const std::exception &error) {
-            disconnect(error.what());
-        }
-    }
-    network_.reset();
-    run_tasks();
-}
-
-// Connects every target; one that cannot be reached leaves them all down
-// for now, and the next attempt comes a period later.
-void NetworkWorker::connect()
-{
-    auto network = std::make_unique<client::Network>(answer_timeout_);
-    network->set_listener([this](const client::ReceivedFrame &frame) { heard_.push_back(frame); });
-    try {
-        for (const std::string &target : targets_)
-            network->connect(target);
-    } catch (const std::exception &error) {
-        for (LinkStatus &link : links_) {
-            link.up = false;
-            link.error = error.what();
+            // A broken frame or a link that failed in a task: the Network has
+            // marked what it must; the reports below say the rest.
+            std::cerr << "aseba-ide: " << error.what() << "\n";
         }
         report_links();
-        return;
+        report_robots();
+        if (!heard_.empty())
+            report([frames = std::move(heard_)](const NetworkReports &reports) mutable {
+                reports.frames(std::move(frames));
+            });
+        heard_.clear();
     }
-    for (LinkStatus &link : links_) {
-        link.up = true;
-        link.error.clear();
-    }
-    report_links();
-    network_ = std::move(network);
-}
-
-void NetworkWorker::disconnect(const std::string &reason)
-{
-    for (const auto &[key, signature] : reported_robots_)
-        report([key = key](const NetworkReports &reports) { reports.robot_gone(key); });
-    reported_robots_.clear();
-    heard_.clear();
-    network_.reset();
-    for (LinkStatus &link : links_) {
-        link.up = false;
-        link.error = reason;
-    }
-    report_links();
-    std::unique_lock lock(mutex_);
-    wake_.wait_for(lock, RECONNECT_PERIOD, [this] { return stopping_; });
+    // Tasks still queued learn that no answer will come.
+    serving_ = false;
+    run_tasks();
 }
 
 void NetworkWorker::run_tasks()
@@ -165,7 +138,7 @@ void NetworkWorker::run_tasks()
             task = std::move(tasks_.front());
             tasks_.pop_front();
         }
-        task(network_.get());
+        task(serving_ ? network_.get() : nullptr);
     }
 }
 

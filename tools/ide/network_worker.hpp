@@ -1,16 +1,14 @@
 // The IDE's link to the robots: a thread of its own that owns the client
 // library's Network (whose commands wait for answers) so that the web side
-// never waits for a robot. It runs the tasks the server gives it, keeps the
-// links up (reconnecting after an emulator restart or a dropped serial
-// port), reads the variables the browsers show, and reports what it hears on
-// the server's io_context: frames, robots that appear, change or go, links
-// that go down or come back.
+// never waits for a robot. It runs the tasks the server gives it, reads the
+// variables the browsers show, and reports what it hears on the server's
+// io_context: frames, robots that appear, change or go, links that go down
+// or come back (the Network reconnects them by itself).
 
 #pragma once
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <deque>
 #include <functional>
 #include <map>
@@ -57,8 +55,8 @@ struct NetworkReports {
     std::function<void(NodeKey, std::vector<int16_t> &&values)> variables; // from address 0
 };
 
-// A piece of work for the network thread. `network` is null while the links
-// are down: the task must then say so to whoever waits for it.
+// A piece of work for the network thread. `network` is null when the worker
+// is stopping: the task must then say so to whoever waits for it.
 using NetworkTask = std::function<void(client::Network *network)>;
 
 class NetworkWorker
@@ -66,10 +64,9 @@ class NetworkWorker
   public:
     // How often a watched robot's variables are read at most (Studio: 10 Hz).
     static constexpr std::chrono::milliseconds VARIABLES_PERIOD{ 100 };
-    // How long to wait before connecting again after a link failed.
-    static constexpr std::chrono::milliseconds RECONNECT_PERIOD{ 1000 };
 
-    // Starts the thread, which connects to `targets` (transport.hpp syntax).
+    // Starts the thread, which connects to `targets` (transport.hpp syntax)
+    // and keeps them connected; throws TransportError for a malformed one.
     NetworkWorker(asio::io_context &reports_context,
                   std::vector<std::string> targets,
                   NetworkReports reports,
@@ -87,8 +84,6 @@ class NetworkWorker
 
   private:
     void run();
-    void connect();
-    void disconnect(const std::string &reason);
     void run_tasks();
     void refresh_variables();
     void report_robots();
@@ -105,13 +100,13 @@ class NetworkWorker
 
     // Shared with the server's thread.
     std::mutex mutex_;
-    std::condition_variable wake_;
     std::deque<NetworkTask> tasks_;
     std::map<NodeKey, uint16_t> watched_;
     bool stopping_ = false;
 
-    // The network thread's own.
+    // The network thread's own (wake() excepted).
     std::unique_ptr<client::Network> network_;
+    bool serving_ = true; // false once stopping: tasks get no network
     std::vector<client::ReceivedFrame> heard_;
     std::map<NodeKey, std::string> reported_robots_; // key -> what was last reported
     std::vector<LinkStatus> links_;

@@ -2,8 +2,6 @@
 // headers of websocketpp 0.8.2 (Debian 12) declare constructors with
 // template-ids, which C++20 rejects; nothing of them leaks into the header.
 
-#define ASIO_STANDALONE
-
 #include "web_server.hpp"
 
 #include <iostream>
