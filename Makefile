@@ -160,12 +160,12 @@ bench: | $(DEPS_STAMP) $(TEST_DEPS_STAMP) $(BENCH_DEPS_STAMP)
 # The main job; RUN_ARGS go to epuck-emu (e.g. RUN_ARGS="--duration 60").
 # It builds the programs a user runs beside it, and needs the build group of
 # dependencies only.
-run: $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba $(BUILD)/host/bin/asebac
+run: $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba-ide $(BUILD)/host/bin/aseba $(BUILD)/host/bin/asebac
 	@scripts/run-main-job.sh $(BUILD)/host $(RUN_ARGS)
 
 # The programs a user runs, on the PATH: `make install PREFIX=~/.local`.
 PREFIX ?= /usr/local
-INSTALLED_PROGRAMS := aseba asebac epuck-emu epuck-image
+INSTALLED_PROGRAMS := aseba aseba-ide asebac epuck-emu epuck-image
 install: $(foreach p,$(INSTALLED_PROGRAMS),$(BUILD)/host/bin/$(p))
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 755 $^ $(DESTDIR)$(PREFIX)/bin/

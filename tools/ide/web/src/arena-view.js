@@ -114,6 +114,7 @@ export class ArenaView {
         context.fillRect(g.x(0), g.y(arena.height), arena.width * g.scale, arena.height * g.scale);
         for (const area of arena.areas ?? []) this.drawArea(context, g, area);
         for (const obstacle of arena.obstacles ?? []) this.drawObstacle(context, g, obstacle);
+        for (const sound of arena.sounds ?? []) this.drawSound(context, g, sound);
         context.strokeStyle = rgb(arena.walls);
         context.lineWidth = WALL_CM * g.scale;
         context.strokeRect(g.x(0), g.y(arena.height), arena.width * g.scale, arena.height * g.scale);
@@ -153,6 +154,30 @@ export class ArenaView {
         }
         context.fill();
         context.stroke();
+    }
+
+    // A loudspeaker: a dot and two arcs of waves, with its frequency.
+    drawSound(context, g, sound) {
+        const cx = g.x(sound.x);
+        const cy = g.y(sound.y);
+        context.fillStyle = "#6e40c9";
+        context.strokeStyle = "#6e40c9";
+        context.lineWidth = 1.5;
+        context.beginPath();
+        context.arc(cx, cy, 3, 0, 2 * Math.PI);
+        context.fill();
+        for (const radius of [7, 11]) {
+            context.beginPath();
+            context.arc(cx, cy, radius, -Math.PI / 4, Math.PI / 4);
+            context.stroke();
+            context.beginPath();
+            context.arc(cx, cy, radius, (3 * Math.PI) / 4, (5 * Math.PI) / 4);
+            context.stroke();
+        }
+        context.font = "10px system-ui, sans-serif";
+        context.textAlign = "center";
+        context.textBaseline = "top";
+        context.fillText(`${Math.round(sound.frequency)} Hz`, cx, cy + 12);
     }
 
     drawRobot(context, g, robot, radius) {
