@@ -24,6 +24,11 @@ CXX := g++
 WARNINGS := -Wall -Wextra -Werror -Wshadow -Wpointer-arith -Wundef
 C_STANDARD := -std=gnu99
 CXX_STANDARD := -std=c++20
+# Standalone asio (not Boost's), one way in every file: its aligned
+# allocation would otherwise depend on which standard headers a file
+# includes first, and memory allocated in one file could be freed with the
+# wrong function in another.
+CXX_DEFINES := -DASIO_STANDALONE -DASIO_DISABLE_STD_ALIGNED_ALLOC
 INCLUDES := -I. -Ivm -Inative_functions
 # Every build names its target's one configuration header (docs/porting.md);
 # the host variants are the host target, the simulated e-puck.
@@ -39,6 +44,9 @@ host-sanitize_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover
 LIBRARIES :=
 PROGRAMS :=
 TESTS :=
+# Tests that are not GoogleTest programs (the IDE's browser tests): any
+# program whose output ends with "N passed, N failed".
+TEST_SCRIPTS :=
 
 # --- dependencies from Debian, installed once by the project's script ------
 # (defined before the modules, whose rules name them)
@@ -67,7 +75,7 @@ $(BUILD)/$(1)/obj/%.o: %.c | $(DEPS_STAMP)
 
 $(BUILD)/$(1)/obj/%.o: %.cpp | $(DEPS_STAMP)
 	@mkdir -p $$(@D)
-	$$(CXX) $(CXX_STANDARD) $(WARNINGS) $$($(1)_FLAGS) $$(INCLUDES) $$(EXTRA_CFLAGS_$$*) -MMD -MP -c $$< -o $$@
+	$$(CXX) $(CXX_STANDARD) $(CXX_DEFINES) $(WARNINGS) $$($(1)_FLAGS) $$(INCLUDES) $$(EXTRA_CFLAGS_$$*) -MMD -MP -c $$< -o $$@
 endef
 $(foreach v,$(VARIANTS),$(eval $(call VARIANT_RULES,$(v))))
 
@@ -115,10 +123,10 @@ TEST_BINARIES = $(foreach t,$(TESTS),$(BUILD)/host-sanitize/tests/$(t))
 .PHONY: all test tests cross-check run format clean deps fuzz bench install
 all: $(HOST_OUTPUTS)
 
-tests: $(TEST_BINARIES)
+tests: $(TEST_BINARIES) $(TEST_SCRIPTS)
 
-test: $(TEST_BINARIES)
-	@scripts/run-tests.sh $(TEST_BINARIES)
+test: $(TEST_BINARIES) $(TEST_SCRIPTS)
+	@scripts/run-tests.sh $(TEST_BINARIES) $(TEST_SCRIPTS)
 
 deps:
 	@scripts/install-deps.sh build test cross fuzz bench experiment
@@ -136,6 +144,10 @@ cross-check: | $(CROSS_DEPS_STAMP)
 sources-%:
 	@echo $($*_SOURCES)
 
+# A variable of this Makefile, for the same scripts: `make -s print-CXX_DEFINES`.
+print-%:
+	@echo $($*)
+
 # Every libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan.
 FUZZ_SECONDS ?= 60
 fuzz: | $(FUZZ_DEPS_STAMP)
@@ -149,12 +161,12 @@ bench: | $(DEPS_STAMP) $(TEST_DEPS_STAMP) $(BENCH_DEPS_STAMP)
 # The main job; RUN_ARGS go to epuck-emu (e.g. RUN_ARGS="--duration 60").
 # It builds the programs a user runs beside it, and needs the build group of
 # dependencies only.
-run: $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba $(BUILD)/host/bin/asebac
+run: $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba-ide $(BUILD)/host/bin/aseba $(BUILD)/host/bin/asebac
 	@scripts/run-main-job.sh $(BUILD)/host $(RUN_ARGS)
 
 # The programs a user runs, on the PATH: `make install PREFIX=~/.local`.
 PREFIX ?= /usr/local
-INSTALLED_PROGRAMS := aseba asebac epuck-emu epuck-image
+INSTALLED_PROGRAMS := aseba aseba-ide asebac epuck-emu epuck-image
 install: $(foreach p,$(INSTALLED_PROGRAMS),$(BUILD)/host/bin/$(p))
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 755 $^ $(DESTDIR)$(PREFIX)/bin/

@@ -11,6 +11,8 @@ shift 2
 
 # The project's libraries, as the Makefile lists them.
 library() { make -s --no-print-directory "sources-$1"; }
+# shellcheck disable=SC2207 # the definitions are words
+cxx_defines=($(make -s --no-print-directory print-CXX_DEFINES))
 vm_sources=$(library aseba_vm)
 natives_sources="$vm_sources $(library aseba_natives)"
 compiler_sources="$natives_sources $(library aseba_compiler)"
@@ -29,21 +31,23 @@ declare -A sources=(
              tests/fuzz/files_fuzzer.cpp"
     [formats]="$compiler_sources tests/fuzz/formats_fuzzer.cpp"
     [command_line]="$client_sources tools/console/options.cpp tests/fuzz/command_line_fuzzer.cpp"
+    [ide]="$client_sources tools/ide/requests.cpp tests/fuzz/ide_requests_fuzzer.cpp"
 )
 # The compiler reads projects with pugixml; the client's links use asio,
 # whose resolver runs a thread.
 declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="-lpugixml"
                        [client]="-lpugixml -pthread" [files]="" [formats]="-lpugixml"
-                       [command_line]="-lpugixml -pthread")
+                       [command_line]="-lpugixml -pthread" [ide]="-lpugixml -pthread")
 declare -A max_length=([vm]=1024 [node]=4096 [compiler]=1048576 [client]=4096 [files]=8192
-                       [formats]=8192 [command_line]=512)
+                       [formats]=8192 [command_line]=512 [ide]=4096)
 # Folders of real inputs a target starts from, besides its own corpus.
 declare -A seeds=([compiler]="examples tests/compiler/programs"
                   [files]="tests/bootloader/hex tests/arena/data"
-                  [formats]="examples tests/interop/programs tests/fuzz/seeds/formats")
+                  [formats]="examples tests/interop/programs tests/fuzz/seeds/formats"
+                  [ide]="tests/ide_server/data")
 
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files formats command_line)
+[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files formats command_line ide)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba
@@ -61,7 +65,7 @@ for target in "${targets[@]}"; do
         *.c) clang -std=gnu99 -Wall -Wextra -Werror "${sanitize[@]}" -fsanitize=fuzzer-no-link \
                  -DVM_USE_COMPUTED_GOTO=1 \
                  "${includes[@]}" -c "$source" -o "$object" ;;
-        *.cpp) clang++ -std=c++20 -Wall -Wextra -Werror "${sanitize[@]}" \
+        *.cpp) clang++ -std=c++20 "${cxx_defines[@]}" -Wall -Wextra -Werror "${sanitize[@]}" \
                  -fsanitize=fuzzer-no-link "${includes[@]}" -c "$source" -o "$object" ;;
         esac
         objects+=("$object")

@@ -16,12 +16,12 @@ set -euo pipefail
 declare -A groups=(
     [build]="make g++ gcc
              libpugixml-dev nlohmann-json3-dev libcli11-dev libasio-dev
-             libenki-dev"
+             libenki-dev libwebsocketpp-dev nodejs"
     [test]="libgtest-dev python3 aseba libdashel-dev locales
-            qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi"
+            qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi chromium"
     [cross]="gcc-avr avr-libc binutils-avr gcc-arm-none-eabi libnewlib-arm-none-eabi"
     [fuzz]="clang libclang-rt-14-dev libpugixml-dev nlohmann-json3-dev libasio-dev aseba"
-    [bench]="valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr
+    [bench]="chromium valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr
              gcc-arm-none-eabi libnewlib-arm-none-eabi simavr libsimavr-dev qemu-system-arm"
     [experiment]="python3 python3-matplotlib"
 )
@@ -34,6 +34,10 @@ declare -A groups=(
 #   aseba, libdashel-dev, locales   the reference implementation, an oracle
 #                                   for tests and benchmarks only
 #   valgrind            instruction counts in benchmarks
+#   libwebsocketpp-dev  the IDE's server: HTTP and WebSocket on asio
+#   nodejs              the IDE's page: npm installs its lockfile, esbuild bundles it
+#   chromium            the IDE's browser tests and benchmarks (headless, driven by
+#                       playwright-core from the page's lockfile)
 #   qemu-system-arm, gcc-arm-none-eabi   the STM32F4 image and its tests
 #                       (QEMU netduinoplus2)
 #   simavr              benchmarks: the VM on an AVR, as a proxy for the dsPIC
@@ -70,4 +74,12 @@ if [[ " ${packages[*]} " == *" locales "* ]] &&
     ! locale -a 2>/dev/null | grep -qi '^en_US\.utf-\?8$'; then
     echo "install-deps: generating the en_US.UTF-8 locale"
     as_root localedef -i en_US -f UTF-8 en_US.UTF-8
+fi
+
+# Debian's own nodejs comes without npm (a build from nodejs.org or
+# NodeSource includes it): the IDE's page needs it.
+if [[ " ${packages[*]} " == *" nodejs "* ]] && ! command -v npm >/dev/null; then
+    echo "install-deps: installing npm"
+    export DEBIAN_FRONTEND=noninteractive
+    as_root apt-get install -y -q --no-install-recommends npm
 fi

@@ -3,14 +3,31 @@
 # red, green and blue ground areas; the experimenter knocks robots that
 # linger on red) with six simulated e-pucks in it, each running the real
 # firmware with the 2007 paper's swarm controller, as one Aseba network on
-# TCP port 33333 that Aseba Studio, the console and the Debian tools can
-# join. Paced to real time; stop it with Ctrl-C.
+# TCP port 33333, and the group IDE on it at http://localhost:33380/ (the
+# arena view fed on port 33334). Paced to real time; stop it with Ctrl-C.
 # Usage: run-main-job.sh BUILD_HOST_DIR [epuck-emu options...]
 set -euo pipefail
 bin=$1/bin
 shift
-echo "Six e-pucks in the default arena running examples/paper-annex.aesl; join with e.g."
-echo "  asebastudio 'tcp:localhost;33333'   or   $bin/aseba nodes"
-echo "Alarms: 'bad N (colour:count ...)', colours 0 red, 1 green, 2 blue."
-exec "$bin/epuck-emu" --arena default --speed realtime --port 33333 \
+network_port=33333
+feed_port=33334
+ide_port=${IDE_PORT:-33380}
+# The IDE edits a copy of the controller, so that Save never changes the
+# example; the copy is kept between runs.
+project=$1/../run/paper-annex.aesl
+mkdir -p "$(dirname "$project")"
+[ -e "$project" ] || cp examples/paper-annex.aesl "$project"
+
+"$bin/aseba-ide" --port "$ide_port" --arena "localhost:$feed_port" --project "$project" \
+    "tcp:localhost;$network_port" &
+ide=$!
+trap 'kill "$ide" 2>/dev/null || true; wait "$ide" 2>/dev/null || true' EXIT
+sleep 0.3
+kill -0 "$ide" 2>/dev/null || { echo "run: the IDE could not start (is port $ide_port in use? IDE_PORT=N picks another)"; exit 1; }
+
+echo "Six e-pucks in the default arena running examples/paper-annex.aesl."
+echo "  The group IDE:  http://localhost:$ide_port/   (open it in a browser; Save writes $project)"
+echo "  Other tools:    asebastudio 'tcp:localhost;$network_port'   or   $bin/aseba nodes"
+echo "Alarms: 'bad N (colour:count ...)', colours 0 red, 1 green, 2 blue. Ctrl-C stops."
+"$bin/epuck-emu" --arena default --speed realtime --port "$network_port" --arena-feed "$feed_port" \
     --load examples/paper-annex.aesl "$@"

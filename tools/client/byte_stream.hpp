@@ -5,12 +5,7 @@
 
 #pragma once
 
-// Standalone asio, not Boost's. Its aligned allocation depends on a macro
-// the standard library defines only once one of its headers is in, so two
-// files could choose differently and free with the wrong function: use
-// operator new and delete everywhere.
-#define ASIO_STANDALONE
-#define ASIO_DISABLE_STD_ALIGNED_ALLOC
+// Standalone asio, configured for every file by the Makefile (CXX_DEFINES).
 #include <asio.hpp>
 
 #include <chrono>

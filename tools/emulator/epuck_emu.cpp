@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "arena_control.hpp"
+#include "arena_feed.hpp"
 #include "arena_file.hpp"
 #include "arena_simulation.hpp"
 #include "control_port.hpp"
@@ -91,6 +92,7 @@ struct Options {
     bool realtime = false;
     bool drawn_starts = false;
     uint16_t control_port = 0; // 0: none
+    uint16_t arena_feed = 0;   // port of the arena feed; 0: none
 };
 
 [[noreturn]] void fail(const std::string &message)
@@ -203,6 +205,14 @@ Options parse_options(int argc, char **argv)
                   "arena mode: take commands on loopback port P, one a line: turn a\n"
                   "robot's selector, press a remote key for one robot or all, status\n"
                   "(docs/arena-format.md, \"Run-time control\")")
+      ->check(CLI::Range(1, 65535).description(""))
+      ->type_name("P");
+    app
+      .add_option("--arena-feed",
+                  options.arena_feed,
+                  "arena mode: serve the arena's geometry and the robots' positions and\n"
+                  "LEDs on port P (of the --listen address), for viewers such as\n"
+                  "aseba-ide --arena (docs/ide-protocol.md)")
       ->check(CLI::Range(1, 65535).description(""))
       ->type_name("P");
     bool headless = false; // there is no window to hide
@@ -358,6 +368,25 @@ aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &b
     return program;
 }
 
+// What the arena feed shows of each robot: its pose, and its LEDs as the
+// board's output pins drive them.
+std::vector<aseba::arena::FeedRobot> feed_robots(aseba::arena::ArenaSimulation &simulation)
+{
+    std::vector<aseba::arena::FeedRobot> robots;
+    for (size_t i = 0; i < simulation.robot_count(); i++) {
+        const hal_board &board = simulation.board(i);
+        aseba::arena::FeedRobot robot;
+        robot.node_id = simulation.node_id(i);
+        robot.pose = simulation.world().pose(i);
+        for (size_t led = 0; led < robot.ring.size(); led++)
+            robot.ring[led] = board.outputs[EPUCK_PIN_LED_0 + led];
+        robot.body = board.outputs[EPUCK_PIN_BODY_LED];
+        robot.front = board.outputs[EPUCK_PIN_FRONT_LED];
+        robots.push_back(robot);
+    }
+    return robots;
+}
+
 // Arena mode: the robots in an Enki world, in simulated time (see
 // tools/emulator/arena_simulation.hpp); returns the exit status.
 int run_arena(const Options &options,
@@ -407,6 +436,15 @@ int run_arena(const Options &options,
             fail(error.what());
         }
     }
+    std::unique_ptr<aseba::arena::ArenaFeed> feed;
+    if (options.arena_feed != 0) {
+        try {
+            feed = std::make_unique<aseba::arena::ArenaFeed>(
+              arena, options.listen_address, options.arena_feed);
+        } catch (const std::exception &error) {
+            fail(error.what());
+        }
+    }
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
     MemoryFiles memories(options, simulation.robot_count(), [&](size_t i) -> host_robot & {
@@ -440,6 +478,7 @@ int run_arena(const Options &options,
     const auto start = clock::now();
     auto wall_seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
     double next_status = status_period;
+    double next_feed = 0;
     double last_status_wall = 0;
     double last_status_simulated = 0;
     while (!stop_requested) {
@@ -458,6 +497,13 @@ int run_arena(const Options &options,
         }
         if (control)
             control->service();
+        if (feed) {
+            if (wall >= next_feed) {
+                next_feed = wall + aseba::arena::ArenaFeed::PERIOD_SECONDS;
+                feed->publish(simulation.seconds(), feed_robots(simulation));
+            }
+            feed->service();
+        }
         if (!options.quiet && wall >= next_status) {
             next_status = wall + status_period;
             double factor = (simulation.seconds() - last_status_simulated) /

@@ -13,7 +13,8 @@ aseba_arena_SOURCES := tools/emulator/arena_file.cpp tools/emulator/enki_world.c
                        tools/emulator/arena_simulation.cpp tools/emulator/robot_memory.cpp \
                        tools/emulator/sound_field.cpp tools/emulator/battery.cpp \
                        tools/emulator/remote_control.cpp tools/emulator/arena_control.cpp \
-                       tools/emulator/control_port.cpp
+                       tools/emulator/control_port.cpp \
+                       tools/emulator/arena_feed.cpp
 
 # epuck-emu: the e-puck firmware image running on a PC.
 PROGRAMS += epuck-emu

@@ -1,0 +1,439 @@
+// The IDE server end to end: an in-process IdeServer on a free port, the
+// simulated robots of epuck-emu, and WebSocket clients. Most cases are
+// message traces (data/*.trace): what a page sends and the replies and
+// updates it must get.
+
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <filesystem>
+#include <fstream>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <thread>
+#include <unistd.h>
+
+#include <deque>
+
+#include <asio/io_context.hpp>
+#include <nlohmann/json.hpp>
+
+#include "tests/console/console_support.hpp"
+#include "tools/ide/ide_server.hpp"
+#include "websocket_client.hpp"
+
+namespace
+{
+
+using Json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+using std::chrono::milliseconds;
+
+// How long a trace waits for an expected message.
+constexpr milliseconds EXPECT_LIMIT{ 8000 };
+
+// epuck-emu on a port of the test's choosing, so that it can come back on the
+// same port.
+class Robots
+{
+  public:
+    Robots(uint16_t port, unsigned count)
+      : port_(port)
+      , count_(count)
+    {
+        start();
+    }
+
+    void start()
+    {
+        process_ = std::make_unique<console_test::ReferenceProgram>(
+          std::vector<std::string>{ console_test::program_path("epuck-emu"),
+                                    "--port",
+                                    std::to_string(port_),
+                                    "--robots",
+                                    std::to_string(count_),
+                                    "--duration",
+                                    "120",
+                                    "--quiet" },
+          std::vector<std::string>{},
+          folder_.path() + "/epuck-emu.log");
+        // Ready once it accepts a connection.
+        auto deadline = Clock::now() + milliseconds(5000);
+        while (Clock::now() < deadline) {
+            int fd = socket(AF_INET, SOCK_STREAM, 0);
+            sockaddr_in address{};
+            address.sin_family = AF_INET;
+            address.sin_port = htons(port_);
+            address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+            bool up = connect(fd, reinterpret_cast<sockaddr *>(&address), sizeof address) == 0;
+            close(fd);
+            if (up)
+                return;
+            std::this_thread::sleep_for(milliseconds(20));
+        }
+        throw std::runtime_error("epuck-emu did not start on port " + std::to_string(port_));
+    }
+
+    void stop()
+    {
+        process_.reset();
+    }
+
+  private:
+    uint16_t port_;
+    unsigned count_;
+    console_test::ScratchFolder folder_;
+    std::unique_ptr<console_test::ReferenceProgram> process_;
+};
+
+// The IDE server in a thread of its own, on a free port.
+class Server
+{
+  public:
+    explicit Server(const std::string &target, aseba::ide::IdeOptions options = {})
+    {
+        options.targets = { target };
+        options.web.port = 0;
+        options.answer_timeout = milliseconds(1000);
+        server_ = std::make_unique<aseba::ide::IdeServer>(
+          io_, options, std::vector<aseba::ide::StaticFile>{});
+        thread_ = std::thread([this] { io_.run(); });
+    }
+    ~Server()
+    {
+        io_.stop();
+        thread_.join();
+        server_.reset();
+    }
+    std::string url() const
+    {
+        return "ws://127.0.0.1:" + std::to_string(server_->port()) + "/ws";
+    }
+    uint16_t port() const
+    {
+        return server_->port();
+    }
+
+  private:
+    asio::io_context io_;
+    std::unique_ptr<aseba::ide::IdeServer> server_;
+    std::thread thread_;
+};
+
+// Whether `actual` has everything `expected` has: the same scalars, every
+// key of an object (others may be there), arrays of the same length whose
+// elements match. A string "~TEXT" matches a string containing TEXT, "*"
+// anything present.
+bool matches(const Json &expected, const Json &actual)
+{
+    if (expected.is_string()) {
+        const std::string &pattern = expected.get_ref<const std::string &>();
+        if (pattern == "*")
+            return true;
+        if (!pattern.empty() && pattern[0] == '~')
+            return actual.is_string() &&
+                   actual.get<std::string>().find(pattern.substr(1)) != std::string::npos;
+    }
+    if (expected.is_object()) {
+        if (!actual.is_object())
+            return false;
+        for (const auto &[key, value] : expected.items())
+            if (!actual.contains(key) || !matches(value, actual[key]))
+                return false;
+        return true;
+    }
+    if (expected.is_array()) {
+        if (!actual.is_array() || actual.size() != expected.size())
+            return false;
+        for (size_t i = 0; i < expected.size(); i++)
+            if (!matches(expected[i], actual[i]))
+                return false;
+        return true;
+    }
+    return expected == actual;
+}
+
+// The messages of a page, with each entry of a "log" message also given as
+// a message of its own, {"type": "log-entry", ...entry}, since entries are
+// batched as they come.
+class Page
+{
+  public:
+    explicit Page(ide_test::WebSocketClient &client)
+      : client_(client)
+    {
+    }
+
+    std::optional<Json> next(milliseconds limit)
+    {
+        if (pending_.empty()) {
+            std::optional<std::string> text = client_.receive(limit);
+            if (!text)
+                return std::nullopt;
+            Json message = Json::parse(*text, nullptr, false);
+            pending_.push_back(message);
+            if (message.value("type", "") == "log")
+                for (Json entry : message["entries"]) {
+                    entry["type"] = "log-entry";
+                    pending_.push_back(entry);
+                }
+        }
+        Json message = std::move(pending_.front());
+        pending_.pop_front();
+        return message;
+    }
+
+  private:
+    ide_test::WebSocketClient &client_;
+    std::deque<Json> pending_;
+};
+
+// Waits for a message matching `expected`, skipping others; the messages
+// seen are added to `seen` for the failure report.
+bool await(Page &page, const Json &expected, std::string &seen)
+{
+    auto deadline = Clock::now() + EXPECT_LIMIT;
+    while (Clock::now() < deadline) {
+        auto left = std::chrono::duration_cast<milliseconds>(deadline - Clock::now());
+        std::optional<Json> message = page.next(left);
+        if (!message)
+            return false;
+        if (matches(expected, *message))
+            return true;
+        std::string type = message->value("type", "");
+        if (type != "variables" && type != "status" && type != "log")
+            seen += "  " + message->dump().substr(0, 300) + "\n";
+    }
+    return false;
+}
+
+bool await(ide_test::WebSocketClient &client, const Json &expected, std::string &seen)
+{
+    Page page(client);
+    return await(page, expected, seen);
+}
+
+// Waits until robots 1..count of the first target can take a program.
+void await_robots(ide_test::WebSocketClient &client, Page &page, unsigned count)
+{
+    uint64_t request_id = 1000000; // above a trace's own ids
+    for (unsigned id = 1; id <= count; id++) {
+        bool ready = false;
+        auto deadline = Clock::now() + EXPECT_LIMIT;
+        while (!ready && Clock::now() < deadline) {
+            request_id++;
+            client.send(Json{
+              { "id", request_id },
+              { "type", "compile" },
+              { "robot", "0:" + std::to_string(id) },
+              { "source",
+                "" } }.dump());
+            std::optional<Json> reply;
+            while ((reply = page.next(EXPECT_LIMIT)) &&
+                   reply->value("id", uint64_t(0)) != request_id)
+                ;
+            ready = reply && reply->value("ok", false);
+            if (!ready)
+                std::this_thread::sleep_for(milliseconds(100));
+        }
+        ASSERT_TRUE(ready) << "robot 0:" << id << " never became ready";
+    }
+}
+
+// Runs a trace: "robots N" (first), "ready N" waits until robots 1..N are
+// described, "> JSON" sends, "< JSON" awaits a matching message (a "log"
+// message's entries also come as "log-entry" messages), "stop-robots" /
+// "start-robots" stop and restart the emulator on the same port, "sleep
+// MS", "#" comments.
+void run_trace(const std::filesystem::path &path)
+{
+    std::ifstream file(path);
+    ASSERT_TRUE(file) << path;
+    std::vector<std::pair<unsigned, std::string>> lines;
+    std::string line;
+    for (unsigned number = 1; std::getline(file, line); number++)
+        if (!line.empty() && line[0] != '#')
+            lines.emplace_back(number, line);
+    ASSERT_FALSE(lines.empty());
+    unsigned robot_count = 2;
+    if (lines.front().second.rfind("robots ", 0) == 0) {
+        robot_count = unsigned(std::stoul(lines.front().second.substr(7)));
+        lines.erase(lines.begin());
+    }
+    uint16_t port = console_test::find_free_port();
+    Robots robots(port, robot_count);
+    Server server("tcp:localhost;" + std::to_string(port));
+    ide_test::WebSocketClient client(server.url());
+    Page page(client);
+    for (const auto &[number, text] : lines) {
+        SCOPED_TRACE(path.filename().string() + ":" + std::to_string(number));
+        if (text.rfind("ready ", 0) == 0) {
+            await_robots(client, page, unsigned(std::stoul(text.substr(6))));
+        } else if (text.rfind("> ", 0) == 0) {
+            client.send(text.substr(2));
+        } else if (text.rfind("< ", 0) == 0) {
+            Json expected = Json::parse(text.substr(2), nullptr, false);
+            ASSERT_FALSE(expected.is_discarded()) << "not JSON: " << text;
+            std::string seen;
+            ASSERT_TRUE(await(page, expected, seen)) << "never received " << text << "\nreceived:\n"
+                                                     << seen;
+        } else if (text == "stop-robots") {
+            robots.stop();
+        } else if (text == "start-robots") {
+            robots.start();
+        } else if (text.rfind("sleep ", 0) == 0) {
+            std::this_thread::sleep_for(milliseconds(std::stoul(text.substr(6))));
+        } else {
+            FAIL() << "unknown trace line: " << text;
+        }
+    }
+}
+
+class Traces : public testing::TestWithParam<std::string>
+{
+};
+
+TEST_P(Traces, RunsAsWritten)
+{
+    run_trace(std::filesystem::path("tests/ide_server/data") / GetParam());
+}
+
+std::vector<std::string> trace_names()
+{
+    std::vector<std::string> names;
+    for (const auto &entry : std::filesystem::directory_iterator("tests/ide_server/data"))
+        if (entry.path().extension() == ".trace")
+            names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(Ide,
+                         Traces,
+                         testing::ValuesIn(trace_names()),
+                         [](const testing::TestParamInfo<std::string> &trace) {
+                             std::string name = trace.param.substr(0, trace.param.find('.'));
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
+                         });
+
+TEST(IdeServer, TwentyTabsAtOnceAreAllServed)
+{
+    uint16_t port = console_test::find_free_port();
+    Robots robots(port, 2);
+    Server server("tcp:localhost;" + std::to_string(port));
+    std::vector<std::unique_ptr<ide_test::WebSocketClient>> tabs;
+    for (int i = 0; i < 20; i++)
+        tabs.push_back(std::make_unique<ide_test::WebSocketClient>(server.url()));
+    for (size_t i = 0; i < tabs.size(); i++) {
+        std::string seen;
+        ASSERT_TRUE(await(*tabs[i], Json{ { "type", "hello" } }, seen)) << "tab " << i;
+        tabs[i]->send(R"({"id": 5, "type": "watch", "robots": ["0:1"]})");
+        ASSERT_TRUE(await(*tabs[i], Json{ { "type", "reply" }, { "id", 5 }, { "ok", true } }, seen))
+          << "tab " << i;
+    }
+    // Every tab shows robot 1's variables.
+    for (size_t i = 0; i < tabs.size(); i++) {
+        std::string seen;
+        EXPECT_TRUE(await(*tabs[i], Json{ { "type", "variables" }, { "robot", "0:1" } }, seen))
+          << "tab " << i;
+    }
+}
+
+TEST(IdeServer, APageOfAnotherSiteCannotOpenTheWebSocket)
+{
+    uint16_t port = console_test::find_free_port();
+    Robots robots(port, 1);
+    Server server("tcp:localhost;" + std::to_string(port));
+    std::string own = "http://127.0.0.1:" + std::to_string(server.port());
+    EXPECT_NO_THROW(ide_test::WebSocketClient(server.url(), own));
+    try {
+        ide_test::WebSocketClient client(server.url(), "http://attacker.example");
+        FAIL() << "a page of another site opened the WebSocket";
+    } catch (const std::runtime_error &error) {
+        EXPECT_NE(std::string(error.what()).find("403"), std::string::npos) << error.what();
+    }
+}
+
+// A WebSocket opened by hand, with a small receive buffer, whose page asks
+// to watch `request`'s robots and then reads nothing.
+int open_stalled_page(uint16_t port, const std::string &request)
+{
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    int small = 4096;
+    setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(port);
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (connect(fd, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0)
+        throw std::runtime_error("cannot connect");
+    std::string handshake =
+      "GET /ws HTTP/1.1\r\nHost: 127.0.0.1\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+      "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
+    // A client's frame is masked (RFC 6455 §5.3); a zero mask keeps it readable.
+    std::string frame = { char(0x81), char(0x80 | request.size()), 0, 0, 0, 0 };
+    std::string bytes = handshake + frame + request;
+    if (write(fd, bytes.data(), bytes.size()) != ssize_t(bytes.size()))
+        throw std::runtime_error("cannot write");
+    return fd;
+}
+
+// Everything the server sends to `fd` during `duration`.
+std::string read_for(int fd, milliseconds duration)
+{
+    std::string received;
+    auto deadline = Clock::now() + duration;
+    std::vector<char> buffer(1 << 16);
+    while (Clock::now() < deadline) {
+        ssize_t count = recv(fd, buffer.data(), buffer.size(), MSG_DONTWAIT);
+        if (count > 0)
+            received.append(buffer.data(), size_t(count));
+        else
+            std::this_thread::sleep_for(milliseconds(10));
+    }
+    return received;
+}
+
+TEST(IdeServer, APageThatStopsReadingMissesUpdatesAndIsToldWhileOthersAreServed)
+{
+    uint16_t port = console_test::find_free_port();
+    Robots robots(port, 2);
+    aseba::ide::IdeOptions options;
+    options.web.max_buffered_bytes = 32 * 1024;
+    options.web.socket_send_buffer_bytes = 8 * 1024;
+    Server server("tcp:localhost;" + std::to_string(port), options);
+    int stalled = open_stalled_page(server.port(), R"({"type":"watch","robots":["0:1","0:2"]})");
+
+    ide_test::WebSocketClient reader(server.url());
+    Page page(reader);
+    await_robots(reader, page, 2);
+    std::string seen;
+    // Robot 1 emits as fast as it can: the log and the variables flood the
+    // stalled page.
+    reader.send(
+      R"({"id": 1, "type": "definitions", "events": [{"name": "tick", "size": 8}], "constants": []})");
+    ASSERT_TRUE(await(page, Json{ { "type", "reply" }, { "id", 1 }, { "ok", true } }, seen));
+    reader.send(
+      R"({"id": 2, "type": "load", "programs": [{"robot": "0:1", "source": "var n[8]\nonevent ir_sensors\nn[0]++\nemit tick n\nemit tick n\nemit tick n\nemit tick n"}]})");
+    ASSERT_TRUE(await(page, Json{ { "type", "reply" }, { "id", 2 }, { "ok", true } }, seen))
+      << seen;
+
+    // The reading page gets its replies promptly all along.
+    for (int round = 0; round < 20; round++) {
+        reader.send(R"({"id": 3, "type": "compile", "robot": "0:2", "source": "var y = 2"})");
+        auto sent = Clock::now();
+        ASSERT_TRUE(await(page, Json{ { "type", "reply" }, { "id", 3 }, { "ok", true } }, seen));
+        EXPECT_LT(Clock::now() - sent, milliseconds(500)) << "round " << round;
+        std::this_thread::sleep_for(milliseconds(250));
+    }
+    // When the stalled page reads again, it is told what it missed, and its
+    // connection is still open.
+    std::string received = read_for(stalled, milliseconds(3000));
+    close(stalled);
+    EXPECT_NE(received.find("\"type\":\"hello\""), std::string::npos);
+    EXPECT_NE(received.find("\"type\":\"skipped\""), std::string::npos)
+      << received.size() << " bytes received, no 'skipped'";
+}
+
+} // namespace
