@@ -403,4 +403,63 @@ void ScriptedPeer::serve()
     close(fd);
 }
 
+namespace
+{
+
+// The playground may crash when a client connects while it starts: it is
+// given this long once its port listens.
+const Milliseconds PLAYGROUND_SETTLE{ 1000 };
+const Milliseconds REFERENCE_START_LIMIT{ 10000 };
+
+void wait_listening(uint16_t port, ReferenceProgram &program, const std::string &name)
+{
+    auto deadline = std::chrono::steady_clock::now() + REFERENCE_START_LIMIT;
+    while (!is_listening(port)) {
+        if (!program.running() || std::chrono::steady_clock::now() > deadline)
+            throw std::runtime_error(name + " did not start");
+        std::this_thread::sleep_for(Milliseconds(50));
+    }
+}
+
+} // namespace
+
+PlaygroundBehindSwitch::PlaygroundBehindSwitch()
+{
+    // The project's install script provides them; a missing tool is a failure.
+    if (!in_path("asebaplayground") || !in_path("asebaswitch"))
+        throw std::runtime_error(
+          "Debian's aseba tools are not installed: run scripts/install-deps.sh test");
+    uint16_t robot_port = find_free_port();
+    // A small arena with one e-puck listening on robot_port, node id 1.
+    std::string scene =
+      scratch_.write("arena.playground",
+                     "<!DOCTYPE aseba-playground>\n<aseba-playground>\n"
+                     "<color name=\"wall\" r=\"0.9\" g=\"0.9\" b=\"0.9\"/>\n"
+                     "<world w=\"110\" h=\"110\" color=\"wall\"/>\n"
+                     "<robot type=\"e-puck\" x=\"40\" y=\"40\" port=\"" +
+                       std::to_string(robot_port) + "\" nodeId=\"1\"/>\n</aseba-playground>\n");
+    playground_ = std::make_unique<ReferenceProgram>(
+      std::vector<std::string>{ "asebaplayground", scene },
+      std::vector<std::string>{ "QT_QPA_PLATFORM=offscreen", "XDG_RUNTIME_DIR=" + scratch_.path() },
+      scratch_.path() + "/playground.log");
+    wait_listening(robot_port, *playground_, "asebaplayground");
+    std::this_thread::sleep_for(PLAYGROUND_SETTLE);
+
+    uint16_t switch_port = find_free_port();
+    relay_ = std::make_unique<ReferenceProgram>(
+      std::vector<std::string>{ "asebaswitch",
+                                "-p",
+                                std::to_string(switch_port),
+                                "tcp:localhost;" + std::to_string(robot_port) },
+      std::vector<std::string>{},
+      scratch_.path() + "/switch.log");
+    wait_listening(switch_port, *relay_, "asebaswitch");
+    target_ = "tcp:localhost;" + std::to_string(switch_port);
+}
+
+bool PlaygroundBehindSwitch::running()
+{
+    return playground_->running() && relay_->running();
+}
+
 } // namespace console_test

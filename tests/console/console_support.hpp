@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <sys/types.h>
 #include <thread>
@@ -130,6 +131,29 @@ class ReferenceProgram
 
   private:
     pid_t pid_ = -1;
+};
+
+// A reference node to test a tool against: one e-puck (node id 1) of
+// Debian's asebaplayground, headless, behind Debian's asebaswitch (the
+// playground serves one client at a time). Throws std::runtime_error when a
+// tool is missing or does not start; stopped by the destructor.
+class PlaygroundBehindSwitch
+{
+  public:
+    PlaygroundBehindSwitch();
+    // "tcp:localhost;PORT" of the switch.
+    const std::string &target() const
+    {
+        return target_;
+    }
+    // Whether both reference programs still run.
+    bool running();
+
+  private:
+    ScratchFolder scratch_;
+    std::unique_ptr<ReferenceProgram> playground_;
+    std::unique_ptr<ReferenceProgram> relay_;
+    std::string target_;
 };
 
 // A scripted peer on a free loopback port, for clients under test: it

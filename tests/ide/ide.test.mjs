@@ -170,7 +170,7 @@ test("a compile error is marked in red at its line, and goes when fixed", TIMEOU
 
     await setEditorText(page, PROGRAM);
     await waitFor(async () => (await compileStatus()).kind === "ok", "the fixed script to compile");
-    assert.match((await compileStatus()).text, /bytecode \d+\/1024 words \(\d+ %\), variables \d+\/509 \(\d+ %\)/);
+    assert.match((await compileStatus()).text, /bytecode \d+\/1024 words \(\d+ %\), variables \d+\/605 \(\d+ %\)/);
     assert.equal(await page.locator(".cm-lintRange-error").count(), 0);
 });
 

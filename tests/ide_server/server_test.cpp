@@ -437,3 +437,71 @@ TEST(IdeServer, APageThatStopsReadingMissesUpdatesAndIsToldWhileOthersAreServed)
 }
 
 } // namespace
+
+// The server is a client like any other: against a reference node (an
+// e-puck of Debian's asebaplayground behind asebaswitch) it compiles against
+// the node's own description, loads, debugs and exchanges events.
+TEST(IdeServer, DrivesAReferencePlaygroundEpuckThroughAReferenceSwitch)
+{
+    console_test::PlaygroundBehindSwitch reference;
+    Server server(reference.target());
+    ide_test::WebSocketClient client(server.url());
+    Page page(client);
+    await_robots(client, page, 1);
+    std::string seen;
+    // The playground's e-puck has speed.left, not our firmware's leftSpeed.
+    client.send(R"({"id": 1, "type": "compile", "robot": "0:1", "source": "speed.left = 1"})");
+    ASSERT_TRUE(await(
+      page, Json{ { "type", "reply" }, { "id", 1 }, { "compile", { { "ok", true } } } }, seen))
+      << seen;
+    client.send(R"({"id": 2, "type": "compile", "robot": "0:1", "source": "leftSpeed = 1"})");
+    ASSERT_TRUE(await(
+      page,
+      Json{ { "type", "reply" },
+            { "id", 2 },
+            { "compile",
+              { { "ok", false },
+                { "error", { { "line", 1 }, { "message", "~leftSpeed is not a defined" } } } } } },
+      seen))
+      << seen;
+
+    client.send(
+      R"({"id": 3, "type": "definitions", "events": [{"name": "ping", "size": 2}, {"name": "pong", "size": 2}], "constants": []})");
+    ASSERT_TRUE(await(page, Json{ { "type", "reply" }, { "id", 3 }, { "ok", true } }, seen))
+      << seen;
+    client.send(
+      R"({"id": 4, "type": "load", "programs": [{"robot": "0:1", "source": "var counter = 0\nonevent ir_sensors\n  counter = counter + 1\nonevent ping\n  emit pong [args[0] + args[1], id]\n"}]})");
+    ASSERT_TRUE(await(page, Json{ { "type", "reply" }, { "id", 4 }, { "ok", true } }, seen))
+      << seen;
+    client.send(R"({"id": 5, "type": "emit", "event": "ping", "args": [40, 2]})");
+    ASSERT_TRUE(await(
+      page,
+      Json{
+        { "type", "log-entry" }, { "source", "0:1" }, { "name", "pong" }, { "args", { 42, 1 } } },
+      seen))
+      << seen;
+    client.send(
+      R"({"id": 6, "type": "set-variable", "robot": "0:1", "name": "speed.left", "values": [55]})");
+    ASSERT_TRUE(await(page, Json{ { "type", "reply" }, { "id", 6 }, { "ok", true } }, seen))
+      << seen;
+
+    // A breakpoint in the ir_sensors handler (about 40 Hz on the playground).
+    client.send(R"({"id": 7, "type": "breakpoints", "robot": "0:1", "lines": [3]})");
+    ASSERT_TRUE(await(page,
+                      Json{ { "type", "reply" },
+                            { "id", 7 },
+                            { "ok", true },
+                            { "breakpoints", { { { "line", 3 }, { "set", true } } } } },
+                      seen))
+      << seen;
+    ASSERT_TRUE(
+      await(page,
+            Json{ { "type", "robot" },
+                  { "robot", { { "robot", "0:1" }, { "state", "stepping" }, { "line", 3 } } } },
+            seen))
+      << seen;
+    client.send(R"({"id": 8, "type": "control", "robots": ["0:1"], "action": "stop"})");
+    ASSERT_TRUE(await(page, Json{ { "type", "reply" }, { "id", 8 }, { "ok", true } }, seen))
+      << seen;
+    EXPECT_TRUE(reference.running()) << "asebaplayground or asebaswitch ended";
+}
