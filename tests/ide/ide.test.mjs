@@ -494,6 +494,32 @@ test("the page reconnects to a restarted IDE server and gives it back its text",
     assert.deepEqual(page.errors, []);
 });
 
+test("a hundred robots: each in the network view and in a tab, found by the filter, stopped and run as a group", { timeout: 120000 }, async () => {
+    const many = await startEmulator({ robots: 100 });
+    started.push(many);
+    const manyIde = await startIde({ targets: [`tcp:localhost;${many.port}`] });
+    started.push(manyIde);
+    const crowd = await openIde(browser, manyIde.url);
+    try {
+        await waitFor(async () => (await crowd.locator(".network-row").count()) === 100, "a hundred robots in the network view", 60000);
+        await waitFor(async () => (await crowd.locator(".robot-tab").count()) === 100, "a hundred robot tabs", 60000);
+        const summary = crowd.locator(".network-view .section-summary");
+        await waitFor(async () => (await summary.innerText()) === "100 online · 100 running", "every robot online and running", 60000);
+        await crowd.locator(".network-view .panel-filter").fill("57");
+        await waitFor(async () => (await crowd.locator(".network-row:visible").count()) === 1, "the filter to keep one robot");
+        assert.equal(await crowd.locator(".network-row:visible .network-label").innerText(), "e-puck 57");
+        await clickButton("Stop all", crowd);
+        await waitFor(async () => (await summary.innerText()) === "100 online · 0 running", "every robot stopped", 30000);
+        await clickButton("Run all", crowd);
+        await waitFor(async () => (await summary.innerText()) === "100 online · 100 running", "every robot running again", 30000);
+        assert.deepEqual(crowd.errors, []);
+    } finally {
+        await crowd.context().close();
+        await manyIde.stop();
+        await many.stop();
+    }
+});
+
 test("the server and the emulators stop cleanly, with no sanitizer report", TIMEOUT, async () => {
     await ide.stop();
     await emulator.stop();
