@@ -3,7 +3,7 @@
 # clang (docs/benchmarks.md); the firmware targets compile the same files
 # with their own compilers and config (the switch is the default).
 LIBRARIES += aseba_vm
-aseba_vm_SOURCES := vm/vm.c vm/vm_debug.c vm/vm_verify.c
+aseba_vm_SOURCES := vm/vm.c vm/vm_debug.c vm/vm_verify.c vm/vm_native_text.c
 EXTRA_CFLAGS_vm/vm := -DVM_USE_COMPUTED_GOTO=1
 
 # The node: protocol 5 on any byte stream, around the VM (protocol.md).
