@@ -10,6 +10,7 @@
 #   make dspic30       the e-puck's images, with Microchip XC16 (hal/dspic30/module.mk)
 #   make stm32f4       the STM32F4 image, run by QEMU in the tests (hal/stm32f4/module.mk)
 #   make run           the main job
+#   make install       the programs in PREFIX/bin (default /usr/local)
 #   make format        clang-format every source file
 
 .DEFAULT_GOAL := all
@@ -39,12 +40,21 @@ LIBRARIES :=
 PROGRAMS :=
 TESTS :=
 
+# --- dependencies from Debian, installed once by the project's script ------
+# (defined before the modules, whose rules name them)
+# One stamp per group of scripts/install-deps.sh: `make` and `make run` need
+# the small build group only; the reference Aseba (an oracle with large GUI
+# dependencies) comes with the groups of the targets that use it.
+DEPS_STAMP := $(BUILD)/.deps-build
+TEST_DEPS_STAMP := $(BUILD)/.deps-test
+CROSS_DEPS_STAMP := $(BUILD)/.deps-cross
+FUZZ_DEPS_STAMP := $(BUILD)/.deps-fuzz
+BENCH_DEPS_STAMP := $(BUILD)/.deps-bench
+
 include $(sort $(wildcard */module.mk */*/module.mk))
 
-# --- dependencies from Debian, installed once by the project's script ------
-DEPS_STAMP := $(BUILD)/.deps-installed
-$(DEPS_STAMP): scripts/install-deps.sh
-	@scripts/install-deps.sh
+$(BUILD)/.deps-%: scripts/install-deps.sh
+	@scripts/install-deps.sh $*
 	@mkdir -p $(@D) && touch $@
 
 # --- per-variant rules -----------------------------------------------------
@@ -72,17 +82,25 @@ endef
 
 # $(1) = variant, $(2) = program, $(3) = output folder (bin or tests).
 # A program lists its own sources, the project libraries it uses (in link
-# order) and any system libraries.
+# order) and any system libraries; a project library names the system
+# libraries it needs itself (NAME_LDLIBS), added to every program using it.
 define PROGRAM_RULES
 $(BUILD)/$(1)/$(3)/$(2): $(call objects,$(1),$($(2)_SOURCES)) \
                          $(foreach l,$($(2)_LIBS),$(BUILD)/$(1)/lib/lib$(l).a)
 	@mkdir -p $$(@D)
-	$$(CXX) $$($(1)_FLAGS) $$^ $$($(2)_LDLIBS) -o $$@
+	$$(CXX) $$($(1)_FLAGS) $$^ $$($(2)_LDLIBS) $(sort $(foreach l,$($(2)_LIBS),$($(l)_LDLIBS))) -o $$@
 endef
 
 $(foreach v,$(VARIANTS),$(foreach l,$(LIBRARIES),$(eval $(call LIBRARY_RULES,$(v),$(l)))))
 $(foreach v,$(VARIANTS),$(foreach p,$(PROGRAMS),$(eval $(call PROGRAM_RULES,$(v),$(p),bin))))
 $(foreach v,$(VARIANTS),$(foreach t,$(TESTS),$(eval $(call PROGRAM_RULES,$(v),$(t),tests))))
+
+# Tests and benchmark programs compile against GoogleTest and the
+# reference's headers and libraries.
+$(foreach v,$(VARIANTS),$(foreach t,$(TESTS),\
+  $(eval $(call objects,$(v),$($(t)_SOURCES)) $(BUILD)/$(v)/tests/$(t): | $(TEST_DEPS_STAMP))))
+$(foreach v,$(VARIANTS),$(foreach p,$(filter bench-%,$(PROGRAMS)),\
+  $(eval $(call objects,$(v),$($(p)_SOURCES)) $(BUILD)/$(v)/bin/$(p): | $(TEST_DEPS_STAMP))))
 
 ALL_SOURCES := $(sort $(foreach x,$(LIBRARIES) $(PROGRAMS) $(TESTS),$($(x)_SOURCES)))
 -include $(patsubst %.o,%.d,$(foreach v,$(VARIANTS),$(call objects,$(v),$(ALL_SOURCES))))
@@ -93,7 +111,7 @@ HOST_OUTPUTS = $(foreach l,$(LIBRARIES),$(BUILD)/host/lib/lib$(l).a) \
                $(foreach t,$(TESTS),$(BUILD)/host/tests/$(t))
 TEST_BINARIES = $(foreach t,$(TESTS),$(BUILD)/host-sanitize/tests/$(t))
 
-.PHONY: all test tests cross-check run format clean deps fuzz bench
+.PHONY: all test tests cross-check run format clean deps fuzz bench install
 all: $(HOST_OUTPUTS)
 
 tests: $(TEST_BINARIES)
@@ -102,13 +120,14 @@ test: $(TEST_BINARIES)
 	@scripts/run-tests.sh $(TEST_BINARIES)
 
 deps:
-	@scripts/install-deps.sh
+	@scripts/install-deps.sh build test cross fuzz bench
 
 # The portable layers must build warning-free where `int` is 16 bits (the
 # dsPIC's case, here avr-gcc) and on a 32-bit microcontroller; they are
 # compiled with the e-puck target's configuration (scripts/cross-check.sh).
 PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c firmware/*.c drivers/*/*.c bootloader/*.c)
-cross-check: | $(DEPS_STAMP)
+dspic30-check: | $(CROSS_DEPS_STAMP)
+cross-check: | $(CROSS_DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)
 
 # The sources of a library or program, for scripts that build it another way
@@ -118,17 +137,27 @@ sources-%:
 
 # Every libFuzzer target for FUZZ_SECONDS each, under ASan + UBSan.
 FUZZ_SECONDS ?= 60
-fuzz: | $(DEPS_STAMP)
+fuzz: | $(FUZZ_DEPS_STAMP)
 	@scripts/fuzz.sh $(FUZZ_SECONDS) $(BUILD)
 
 # Performance figures beside the reference Aseba: one table, also written to
 # docs/benchmarks.md (see scripts/bench.sh).
-bench: | $(DEPS_STAMP)
+bench: | $(DEPS_STAMP) $(TEST_DEPS_STAMP) $(BENCH_DEPS_STAMP)
 	@scripts/bench.sh $(BUILD)
 
 # The main job; RUN_ARGS go to epuck-emu (e.g. RUN_ARGS="--duration 60").
-run: all
+# It builds the programs a user runs beside it, and needs the build group of
+# dependencies only.
+run: $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba $(BUILD)/host/bin/asebac
 	@scripts/run-main-job.sh $(BUILD)/host $(RUN_ARGS)
+
+# The programs a user runs, on the PATH: `make install PREFIX=~/.local`.
+PREFIX ?= /usr/local
+INSTALLED_PROGRAMS := aseba asebac epuck-emu epuck-image
+install: $(foreach p,$(INSTALLED_PROGRAMS),$(BUILD)/host/bin/$(p))
+	install -d $(DESTDIR)$(PREFIX)/bin
+	install -m 755 $^ $(DESTDIR)$(PREFIX)/bin/
+	@echo "installed $(INSTALLED_PROGRAMS) in $(DESTDIR)$(PREFIX)/bin"
 
 format:
 	clang-format -i $$(git ls-files '*.c' '*.h' '*.cpp' '*.hpp')

@@ -44,3 +44,13 @@ firmware-ram: | $(DEPS_STAMP)
 	@ram=$$(bench/firmware_ram.sh $(BUILD)) && echo "$$ram" | awk '$$1 == "total" { \
 	    printf "== e-puck firmware, linked 16-bit image (avr-gcc): %d bytes of RAM\n", $$2 }'
 cross-check: firmware-ram
+
+# The tools and the simulated network under load (edit to running on six
+# robots, bursts of connections, a flood); epuck-emu and aseba are run, not
+# linked.
+PROGRAMS += bench-network
+bench-network_SOURCES := bench/network_bench.cpp tests/interop/child_process.cpp \
+                         tests/interop/interop_support.cpp
+bench-network_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
+$(foreach v,$(VARIANTS),$(eval \
+  $(BUILD)/$(v)/bin/bench-network: | $(BUILD)/$(v)/bin/epuck-emu $(BUILD)/$(v)/bin/aseba))

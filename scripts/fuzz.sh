@@ -27,15 +27,23 @@ declare -A sources=(
     [client]="$client_sources tests/fuzz/client_fuzzer.cpp"
     [files]="$vm_sources $(library aseba_node) $(library aseba_flash) tools/emulator/arena_file.cpp
              tests/fuzz/files_fuzzer.cpp"
+    [formats]="$compiler_sources tests/fuzz/formats_fuzzer.cpp"
+    [command_line]="$client_sources tools/console/options.cpp tests/fuzz/command_line_fuzzer.cpp"
 )
-declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="" [client]="" [files]="")
-declare -A max_length=([vm]=1024 [node]=4096 [compiler]=1048576 [client]=4096 [files]=8192)
+# The compiler reads projects with pugixml; the client's links use asio,
+# whose resolver runs a thread.
+declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="-lpugixml"
+                       [client]="-lpugixml -pthread" [files]="" [formats]="-lpugixml"
+                       [command_line]="-lpugixml -pthread")
+declare -A max_length=([vm]=1024 [node]=4096 [compiler]=1048576 [client]=4096 [files]=8192
+                       [formats]=8192 [command_line]=512)
 # Folders of real inputs a target starts from, besides its own corpus.
 declare -A seeds=([compiler]="examples tests/compiler/programs"
-                  [files]="tests/bootloader/hex tests/arena/data")
+                  [files]="tests/bootloader/hex tests/arena/data"
+                  [formats]="examples tests/interop/programs tests/fuzz/seeds/formats")
 
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files)
+[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files formats command_line)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba

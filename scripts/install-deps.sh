@@ -1,21 +1,50 @@
 #!/usr/bin/env bash
 # Installs the Debian packages the project needs, and nothing when they are
 # all present. Used by `make` and by CI; safe to run again at any time.
+# Usage: scripts/install-deps.sh [GROUP...]      (default: build)
+#
+#   build  what `make` and `make run` need: compilers and the host tools'
+#          libraries (a small install)
+#   test   what `make test` adds: GoogleTest, and the reference Aseba that
+#          the tests use as an oracle (its GUI dependencies make it large)
+#   cross  the cross compilers of `make cross-check`
+#   fuzz   clang and libFuzzer for `make fuzz`
+#   bench  valgrind and the reference Aseba for `make bench`
 set -euo pipefail
 
-packages=(
-    make g++ gcc                                   # host build
-    libgtest-dev                                   # tests
-    clang libclang-rt-14-dev                       # fuzzing (libFuzzer) and sanitizers
-    gcc-avr avr-libc binutils-avr                  # cross-check: 16-bit int
-    gcc-arm-none-eabi libnewlib-arm-none-eabi      # cross-check: Cortex-M; make stm32f4
-    qemu-system-arm                                # the STM32F4 image's tests (QEMU netduinoplus2)
-    simavr libsimavr-dev                           # benchmarks: the VM on an AVR
-    aseba libdashel-dev locales                    # the reference implementation (tests only)
-    valgrind                                       # instruction counts in benchmarks
-    python3                                        # test and benchmark scripts
-    libenki-dev                                    # the simulated arena (physics, e-puck sensors)
+declare -A groups=(
+    [build]="make g++ gcc
+             libpugixml-dev nlohmann-json3-dev libcli11-dev libasio-dev
+             libenki-dev"
+    [test]="libgtest-dev python3 aseba libdashel-dev locales
+            qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi"
+    [cross]="gcc-avr avr-libc binutils-avr gcc-arm-none-eabi libnewlib-arm-none-eabi"
+    [fuzz]="clang libclang-rt-14-dev libpugixml-dev nlohmann-json3-dev libasio-dev aseba"
+    [bench]="valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr
+             gcc-arm-none-eabi libnewlib-arm-none-eabi simavr libsimavr-dev qemu-system-arm"
 )
+# What each package is for:
+#   libpugixml-dev      .aesl projects (XML)
+#   nlohmann-json3-dev  target descriptions (JSON)
+#   libcli11-dev        every program's command line
+#   libasio-dev         standalone asio: TCP, serial ports, timers
+#   libenki-dev         the simulated arena (physics, e-puck sensors)
+#   aseba, libdashel-dev, locales   the reference implementation, an oracle
+#                                   for tests and benchmarks only
+#   valgrind            instruction counts in benchmarks
+#   qemu-system-arm, gcc-arm-none-eabi   the STM32F4 image and its tests
+#                       (QEMU netduinoplus2)
+#   simavr              benchmarks: the VM on an AVR, as a proxy for the dsPIC
+
+wanted=("$@")
+[ ${#wanted[@]} -gt 0 ] || wanted=(build)
+
+packages=()
+for group in "${wanted[@]}"; do
+    [ -n "${groups[$group]:-}" ] || { echo "install-deps: unknown group '$group'" >&2; exit 2; }
+    # shellcheck disable=SC2206 # package names are words
+    packages+=(${groups[$group]})
+done
 
 missing=()
 for package in "${packages[@]}"; do
@@ -35,7 +64,8 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 # The reference compiler refuses to start without this locale.
-if ! locale -a 2>/dev/null | grep -qi '^en_US\.utf-\?8$'; then
+if [[ " ${packages[*]} " == *" locales "* ]] &&
+    ! locale -a 2>/dev/null | grep -qi '^en_US\.utf-\?8$'; then
     echo "install-deps: generating the en_US.UTF-8 locale"
     as_root localedef -i en_US -f UTF-8 en_US.UTF-8
 fi

@@ -6,24 +6,18 @@
 // protocol.md §2 (length of the payload, source, type, payload, little
 // endian).
 
-#include <gtest/gtest.h>
-
-#include <arpa/inet.h>
 #include <chrono>
 #include <memory>
-#include <netinet/in.h>
-#include <poll.h>
 #include <stdexcept>
-#include <sys/socket.h>
-#include <unistd.h>
 #include <vector>
 
+#include "network_test_support.hpp"
 #include "tools/emulator/network.hpp"
 
 namespace
 {
 
-using Bytes = std::vector<uint8_t>;
+using namespace network_test;
 using Clock = std::chrono::steady_clock;
 
 // User event 0 with one argument, from node 1 and from node 2.
@@ -43,60 +37,6 @@ const Bytes tool_event = { 0, 0, 0, 0, 3, 0 };
 constexpr auto arrival_limit = std::chrono::seconds(2);
 constexpr auto silence_period = std::chrono::milliseconds(100);
 constexpr int service_wait_ms = 1;
-
-Bytes operator+(Bytes first, const Bytes &second)
-{
-    first.insert(first.end(), second.begin(), second.end());
-    return first;
-}
-
-// A tool's connection to 127.0.0.1:port, non-blocking once connected.
-class ToolSocket
-{
-  public:
-    explicit ToolSocket(uint16_t port)
-    {
-        fd_ = socket(AF_INET, SOCK_STREAM, 0);
-        sockaddr_in address{};
-        address.sin_family = AF_INET;
-        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-        address.sin_port = htons(port);
-        // The listener's backlog takes the connection before accept().
-        if (fd_ < 0 || connect(fd_, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0)
-            throw std::runtime_error("cannot connect to port " + std::to_string(port));
-    }
-    ~ToolSocket()
-    {
-        close(fd_);
-    }
-    ToolSocket(const ToolSocket &) = delete;
-    ToolSocket &operator=(const ToolSocket &) = delete;
-
-    void send(const Bytes &bytes)
-    {
-        ASSERT_EQ(write(fd_, bytes.data(), bytes.size()), ssize_t(bytes.size()));
-    }
-    // Moves what has arrived into received().
-    void collect()
-    {
-        pollfd waiting{ fd_, POLLIN, 0 };
-        while (poll(&waiting, 1, 0) > 0 && (waiting.revents & POLLIN)) {
-            uint8_t buffer[1024];
-            ssize_t count = read(fd_, buffer, sizeof buffer);
-            if (count <= 0)
-                return;
-            received_.insert(received_.end(), buffer, buffer + count);
-        }
-    }
-    const Bytes &received() const
-    {
-        return received_;
-    }
-
-  private:
-    int fd_ = -1;
-    Bytes received_;
-};
 
 struct NetworkRobotPort : testing::Test {
     std::unique_ptr<hal_board> robot_1 = std::make_unique<hal_board>();
@@ -139,24 +79,6 @@ struct NetworkRobotPort : testing::Test {
     void accept_clients(size_t count)
     {
         ASSERT_TRUE(serve_until([&] { return network.client_count() == count; }));
-    }
-
-    // Sends `bytes` from a robot's link, as its firmware would.
-    static void robot_sends(hal_board &robot, const Bytes &bytes)
-    {
-        robot.link_output(robot.link_context, bytes.data(), uint16_t(bytes.size()));
-    }
-
-    // The bytes waiting on a robot's link, taken off it.
-    static Bytes take_received(hal_board &robot)
-    {
-        Bytes received;
-        for (uint16_t i = 0; i < robot.receive_count; i++)
-            received.push_back(
-              robot.receive[(robot.receive_start + i) % HAL_LINK_RECEIVE_CAPACITY]);
-        robot.receive_start = 0;
-        robot.receive_count = 0;
-        return received;
     }
 };
 

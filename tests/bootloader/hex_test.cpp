@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <random>
 #include <sstream>
 #include <string>
@@ -91,7 +94,10 @@ INSTANTIATE_TEST_SUITE_P(
                   Corrupt{ "after_eof.hex", "line 4: record after the end-of-file" },
                   Corrupt{ "bad_digit.hex", "line 3: not a hex digit" },
                   Corrupt{ "count_mismatch.hex", "byte count does not match" },
-                  Corrupt{ "no_colon.hex", "must start with ':'" }));
+                  Corrupt{ "no_colon.hex", "must start with ':'" },
+                  Corrupt{ "overlap.hex",
+                           "line 5: PC address 0x204 was given already on line 4: records "
+                           "overlap" }));
 
 uint32_t instruction_of(const aseba::flash::Page &page, std::size_t index)
 {
@@ -225,6 +231,110 @@ TEST(HexWriter, ReadingWhatItWroteGivesTheSameImage)
     again = aseba::flash::read_microchip_hex(aseba::flash::write_microchip_hex(scattered), 0x18000);
     EXPECT_EQ(again.instructions, scattered.instructions);
     EXPECT_EQ(again.configuration, scattered.configuration);
+}
+
+// What the bootloader will check once the image is written: the checks of
+// `aseba flash` before it reboots any robot.
+TEST(ApplicationCheck, AcceptsWhatTheBootloaderAccepts)
+{
+    ProgramImage image = read("application.hex");
+    aseba::flash::add_application_descriptor(image);
+    EXPECT_NO_THROW(aseba::flash::check_application_image(image));
+}
+
+TEST(ApplicationCheck, RefusesWhatTheBootloaderWouldRefuse)
+{
+    const ProgramImage good = [] {
+        ProgramImage image = read("application.hex");
+        aseba::flash::add_application_descriptor(image);
+        return image;
+    }();
+    auto descriptor = [](ProgramImage &image, uint32_t index) -> uint32_t & {
+        return image.instructions[BOOT_DESCRIPTOR_ADDRESS + 2 * index];
+    };
+    struct Case {
+        const char *what;
+        std::function<void(ProgramImage &)> change;
+        const char *message;
+    };
+    const Case cases[] = {
+        { "data that differ from the CRC",
+          [](ProgramImage &image) { image.instructions[0x202] ^= 1; },
+          "the descriptor's CRC is" },
+        { "a CRC that differs from the data",
+          [&](ProgramImage &image) { descriptor(image, BOOT_DESCRIPTOR_CRC_INDEX) ^= 0x8000; },
+          "the descriptor's CRC is" },
+        { "an instruction the file lacks, now given",
+          [](ProgramImage &image) { image.instructions[0x300] = 0xFFFFFE; },
+          "the descriptor's CRC is" },
+        { "no descriptor",
+          [&](ProgramImage &image) { descriptor(image, BOOT_DESCRIPTOR_MAGIC_INDEX) = 0; },
+          "no application descriptor" },
+        { "an end beyond the pages written",
+          [&](ProgramImage &image) { descriptor(image, BOOT_DESCRIPTOR_END_INDEX) = 0x700; },
+          "the descriptor's end 0x700" },
+        { "an odd end",
+          [&](ProgramImage &image) { descriptor(image, BOOT_DESCRIPTOR_END_INDEX) = 0x5C1; },
+          "the descriptor's end 0x5C1" },
+        { "an entry below the application",
+          [&](ProgramImage &image) { descriptor(image, BOOT_DESCRIPTOR_ENTRY_INDEX) = 0xFE; },
+          "the descriptor's entry 0xFE" },
+    };
+    for (const Case &bad : cases) {
+        ProgramImage image = good;
+        bad.change(image);
+        try {
+            aseba::flash::check_application_image(image);
+            ADD_FAILURE() << bad.what << ": accepted";
+        } catch (const HexError &error) {
+            EXPECT_NE(std::string(error.what()).find(bad.message), std::string::npos)
+              << bad.what << ": " << error.what();
+        }
+    }
+}
+
+// The pages asebacmd whex writes, as its BootloaderInterface::writeHex
+// builds them from a HEX file: a page for each page the file has data in,
+// zeros where the file has none, pages without data not written at all.
+std::map<uint16_t, std::vector<uint8_t>> reference_tool_pages(const std::string &hex_text)
+{
+    ProgramImage read_back = aseba::flash::read_microchip_hex(hex_text, 0x18000);
+    std::map<uint16_t, std::vector<uint8_t>> pages;
+    for (const auto &[pc, value] : read_back.instructions) {
+        uint32_t byte_address = pc * 2;
+        auto &page = pages[uint16_t(byte_address / aseba::flash::page_bytes)];
+        page.resize(aseba::flash::page_bytes, 0);
+        size_t at = byte_address % aseba::flash::page_bytes;
+        for (size_t b = 0; b < 3; b++)
+            page[at + b] = uint8_t(value >> (8 * b));
+    }
+    return pages;
+}
+
+// XC16 images have unprogrammed words inside the application: a HEX file
+// with such gaps makes asebacmd write zeros (or nothing) where the
+// descriptor's CRC expects erased words, and the robot stays in its
+// bootloader. fill_pages, which epuck-image applies, leaves no gap: the
+// reference's pages are then exactly the ones `aseba flash` writes.
+TEST(FilledPages, AsebacmdWritesWhatTheDescriptorExpects)
+{
+    ProgramImage image = read("application.hex");
+    aseba::flash::add_application_descriptor(image);
+    auto expected = aseba::flash::make_pages(image);
+
+    auto with_gaps = reference_tool_pages(aseba::flash::write_microchip_hex(image));
+    EXPECT_NE(with_gaps.size(), expected.size()) << "pages without data are skipped";
+
+    ProgramImage filled = aseba::flash::fill_pages(image);
+    EXPECT_NO_THROW(aseba::flash::check_application_image(filled));
+    auto written = reference_tool_pages(aseba::flash::write_microchip_hex(filled));
+    ASSERT_EQ(written.size(), expected.size());
+    for (const auto &page : expected) {
+        ASSERT_TRUE(written.count(page.number)) << "page " << page.number;
+        EXPECT_TRUE(std::equal(page.bytes.begin(), page.bytes.end(), written[page.number].begin()))
+          << "page " << page.number;
+    }
+    EXPECT_EQ(aseba::flash::make_pages(filled).size(), expected.size());
 }
 
 } // namespace

@@ -245,7 +245,7 @@ TEST(TinyUpload, UsageErrorsAndHelp)
     EXPECT_EQ(install({ "--port", "/dev/null", "--id", "65536", "f.hex" }).status, 2);
     EXPECT_EQ(install({ "--port", "/dev/null", "--wait", "0", "f.hex" }).status, 2);
     CommandResult missing = install({ "--port", "/dev/null", "no-such-file.hex" });
-    EXPECT_EQ(missing.status, 1);
+    EXPECT_EQ(missing.status, 2); // an input file that cannot be read, as for every tool
     EXPECT_TRUE(contains(missing.err, "no-such-file.hex: cannot be read")) << missing.err;
     FactoryFile file;
     CommandResult not_a_tty = install({ "--port", "/dev/null", file.path });
@@ -281,7 +281,9 @@ TEST_P(TinyUploadPowerCut, ASecondInstallationSucceedsUnlessTheCutHitRow0sErase)
         auto link = aseba::flash::open_tiny_serial_link(robot.device());
         aseba::flash::TinyUploadSettings settings;
         settings.handshake_timeout = milliseconds(1000);
-        settings.reply_timeout = milliseconds(200);
+        // Short, so that the cut is noticed soon, yet long enough for a
+        // loaded machine running tests side by side.
+        settings.reply_timeout = milliseconds(1000);
         auto packets = aseba::flash::tiny_bootloader_packets(factory_image(), robot_number);
         try {
             aseba::flash::tiny_upload(*link, packets, settings);

@@ -35,6 +35,12 @@ constexpr const char *EMULATOR_SAFETY_SECONDS = "120";
 
 } // namespace
 
+std::string program_path(const std::string &name)
+{
+    std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
+    return (self.parent_path().parent_path() / "bin" / name).string();
+}
+
 uint16_t find_free_port()
 {
     int fd = socket(AF_INET, SOCK_STREAM, 0);
@@ -155,15 +161,15 @@ std::string ScratchFolder::write(const std::string &name, const std::string &con
     return file;
 }
 
-Emulator::Emulator(unsigned robots, const std::vector<std::string> &options)
+Emulator::Emulator(unsigned robots, const std::vector<std::string> &options, uint16_t port)
 {
-    port_ = find_free_port();
+    port_ = port != 0 ? port : find_free_port();
     int output[2];
     if (pipe(output) != 0)
         throw std::runtime_error("pipe failed");
-    std::vector<std::string> arguments = { EMULATOR_PATH,          "--port",
-                                           std::to_string(port_),  "--robots",
-                                           std::to_string(robots), "--duration",
+    std::vector<std::string> arguments = { program_path("epuck-emu"), "--port",
+                                           std::to_string(port_),     "--robots",
+                                           std::to_string(robots),    "--duration",
                                            EMULATOR_SAFETY_SECONDS };
     arguments.insert(arguments.end(), options.begin(), options.end());
     pid_ = start(arguments, "", output[1], "", "/dev/null");
@@ -180,7 +186,7 @@ Emulator::Emulator(unsigned robots, const std::vector<std::string> &options)
             (count = read(output[0], buffer, sizeof buffer)) <= 0) {
             close(output[0]);
             stop_process(pid_);
-            throw std::runtime_error(std::string(EMULATOR_PATH) + " did not start (output: '" +
+            throw std::runtime_error(program_path("epuck-emu") + " did not start (output: '" +
                                      seen + "')");
         }
         seen.append(buffer, size_t(count));
@@ -200,6 +206,15 @@ void Emulator::stop()
     pid_ = -1;
 }
 
+void Emulator::kill_now()
+{
+    if (pid_ > 0) {
+        kill(pid_, SIGKILL);
+        waitpid(pid_, nullptr, 0);
+    }
+    pid_ = -1;
+}
+
 std::string Emulator::target() const
 {
     return "tcp:localhost;" + std::to_string(port_);
@@ -213,8 +228,18 @@ CommandResult run_console(const std::vector<std::string> &arguments,
     return console.finish(limit);
 }
 
+CommandResult run_program(const std::string &program,
+                          const std::vector<std::string> &arguments,
+                          const std::string &state_folder,
+                          Milliseconds limit)
+{
+    BackgroundConsole running(arguments, state_folder, program);
+    return running.finish(limit);
+}
+
 BackgroundConsole::BackgroundConsole(const std::vector<std::string> &arguments,
-                                     const std::string &state_folder)
+                                     const std::string &state_folder,
+                                     const std::string &program)
   : folder_(state_folder)
 {
     static unsigned counter = 0;
@@ -222,7 +247,7 @@ BackgroundConsole::BackgroundConsole(const std::vector<std::string> &arguments,
       state_folder + "/console-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
     out_path_ = stem + ".out";
     err_path_ = stem + ".err";
-    std::vector<std::string> command{ CONSOLE_PATH };
+    std::vector<std::string> command{ program_path(program) };
     command.insert(command.end(), arguments.begin(), arguments.end());
     pid_ = start(command, state_folder, -1, out_path_, err_path_);
 }

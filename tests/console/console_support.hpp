@@ -20,10 +20,11 @@ namespace console_test
 
 using Milliseconds = std::chrono::milliseconds;
 
-// The programs under test, relative to the repository root (where the tests
-// run); the plain host build, as `make` produces them.
-inline constexpr const char *EMULATOR_PATH = "build/host/bin/epuck-emu";
-inline constexpr const char *CONSOLE_PATH = "build/host/bin/aseba";
+// A program under test (epuck-emu, aseba, asebac, epuck-image) of the same
+// build as the test itself: build/VARIANT/bin/NAME beside
+// build/VARIANT/tests/, so that `make test` builds each program once, with
+// the sanitizers.
+std::string program_path(const std::string &name);
 
 // A private temporary folder, removed with its content at the end.
 class ScratchFolder
@@ -44,15 +45,21 @@ class ScratchFolder
     std::string path_;
 };
 
-// epuck-emu with `robots` robots, listening on a free loopback port once
-// constructed (throws if it does not start within a few seconds).
+// epuck-emu with `robots` robots, listening on `port` of the loopback (0: a
+// free one) once constructed (throws if it does not start within a few
+// seconds).
 class Emulator
 {
   public:
-    explicit Emulator(unsigned robots = 1, const std::vector<std::string> &options = {});
+    explicit Emulator(unsigned robots = 1,
+                      const std::vector<std::string> &options = {},
+                      uint16_t port = 0);
     ~Emulator();
-    // Stops it as Ctrl-C would (it saves what --memory asks), and waits.
+    // Stops it as Ctrl-C would, and waits.
     void stop();
+    // Kills it as `kill -9` would (no chance to save or clean anything up),
+    // and waits.
+    void kill_now();
     Emulator(const Emulator &) = delete;
     Emulator &operator=(const Emulator &) = delete;
 
@@ -80,11 +87,20 @@ CommandResult run_console(const std::vector<std::string> &arguments,
                           const std::string &state_folder,
                           Milliseconds limit = Milliseconds(10000));
 
-// A running `aseba ARGS` (e.g. monitor) whose output is collected when it ends.
+// Runs `PROGRAM ARGS` (one of program_path's), killing it after `limit`.
+CommandResult run_program(const std::string &program,
+                          const std::vector<std::string> &arguments,
+                          const std::string &state_folder,
+                          Milliseconds limit = Milliseconds(10000));
+
+// A running `aseba ARGS` (e.g. monitor), or another program of ours, whose
+// output is collected when it ends.
 class BackgroundConsole
 {
   public:
-    BackgroundConsole(const std::vector<std::string> &arguments, const std::string &state_folder);
+    BackgroundConsole(const std::vector<std::string> &arguments,
+                      const std::string &state_folder,
+                      const std::string &program = "aseba");
     ~BackgroundConsole();
     BackgroundConsole(const BackgroundConsole &) = delete;
     BackgroundConsole &operator=(const BackgroundConsole &) = delete;

@@ -10,6 +10,7 @@
 #include <memory>
 
 #include "console_support.hpp"
+#include "tools/client/flasher.hpp"
 #include "tools/flash/hex_image.hpp"
 
 extern "C" {
@@ -71,12 +72,15 @@ class Flash : public testing::Test
         return scratch_.write(name, aseba::flash::write_microchip_hex(image));
     }
 
-    // Stops epuck-emu and checks that robot `id`'s flash holds `image`.
-    void expect_flash_holds(unsigned id, const aseba::flash::ProgramImage &image)
+    // Checks that robot `id`'s flash, as epuck-emu keeps it in `folder`,
+    // holds `image`.
+    static void expect_flash_holds(const std::string &folder,
+                                   unsigned id,
+                                   const aseba::flash::ProgramImage &image)
     {
         auto board = std::make_unique<hal_board>();
         host_board_init(board.get(), nullptr, nullptr);
-        std::string path = scratch_.path() + "/robot-" + std::to_string(id) + ".mem";
+        std::string path = folder + "/robot-" + std::to_string(id) + ".mem";
         ASSERT_TRUE(host_board_load_memory(board.get(), path.c_str())) << path;
         size_t wrong = 0;
         for (auto [address, value] : image.instructions)
@@ -109,32 +113,41 @@ TEST_F(Flash, FlashesAGroupOfSixInOneCommand)
     EXPECT_EQ(nodes.exit_code, 0) << nodes.err;
     EXPECT_EQ(count_lines_with(nodes.out, "\"e-puck\""), GROUP) << nodes.out;
 
-    emulator_.stop();
+    // What the robots wrote is in their files as they wrote it: even a
+    // kill -9 loses none of it.
+    emulator_.kill_now();
     for (unsigned id = 1; id <= GROUP; id++)
-        expect_flash_holds(id, image);
+        expect_flash_holds(scratch_.path(), id, image);
 }
 
-TEST_F(Flash, ARefusedImageLeavesTheRobotInItsBootloaderUntilAGoodOne)
+// A robot flashed with an image its bootloader refuses (here through the
+// client library, which `aseba flash` would not do) waits in its bootloader
+// and answers no node messages; named by id, it is flashed anyway and comes
+// back.
+TEST_F(Flash, ARobotWaitingInItsBootloaderIsFlashedByItsId)
 {
     aseba::flash::ProgramImage good = test_application(0x11);
     aseba::flash::ProgramImage corrupt = good;
     corrupt.instructions[BOOT_DESCRIPTOR_ADDRESS +
                          BOOT_DESCRIPTOR_CRC_INDEX * PC_UNITS_PER_INSTRUCTION] ^= 1;
     std::string good_file = write_image("good.hex", good);
-    std::string corrupt_file = write_image("corrupt.hex", corrupt);
-
-    CommandResult refused = aseba({ "flash", corrupt_file, "--node", "2" });
-    EXPECT_EQ(refused.exit_code, 1) << refused.out << refused.err;
-    EXPECT_TRUE(contains(refused.out, "FAILED")) << refused.out;
-    EXPECT_TRUE(contains(refused.out, "did not accept the image")) << refused.out;
-    EXPECT_TRUE(contains(refused.out, "0 of 1 robots flashed")) << refused.out;
-
-    // Robot 2 waits in its bootloader: it is no node; the others still are.
+    {
+        aseba::client::Network network;
+        network.connect(emulator_.target());
+        network.discover();
+        std::vector<aseba::client::FlashPage> pages;
+        for (const aseba::flash::Page &page : aseba::flash::make_pages(corrupt))
+            pages.push_back({ page.number, { page.bytes.begin(), page.bytes.end() } });
+        auto outcomes = aseba::client::flash_nodes(
+          network, network.select("2"), pages, aseba::client::FlashSettings{}, [](const auto &) {});
+        ASSERT_EQ(outcomes.size(), 1u);
+        EXPECT_TRUE(outcomes[0].flashed);
+        EXPECT_FALSE(outcomes[0].restarted) << "the bootloader accepted a corrupt image";
+    }
     CommandResult nodes = aseba({ "nodes" });
     EXPECT_EQ(count_lines_with(nodes.out, "\"e-puck\""), GROUP - 1) << nodes.out;
     EXPECT_FALSE(contains(nodes.out, "node 2 ")) << nodes.out;
 
-    // Named by id, it is flashed anyway, and comes back.
     CommandResult repaired = aseba({ "flash", good_file, "--node", "2" });
     EXPECT_EQ(repaired.exit_code, 0) << repaired.out << repaired.err;
     EXPECT_TRUE(contains(repaired.err, "node 2 did not answer as a node")) << repaired.err;
@@ -143,36 +156,56 @@ TEST_F(Flash, ARefusedImageLeavesTheRobotInItsBootloaderUntilAGoodOne)
     EXPECT_EQ(count_lines_with(nodes.out, "\"e-puck\""), GROUP) << nodes.out;
 
     emulator_.stop();
-    expect_flash_holds(2, good);
+    expect_flash_holds(scratch_.path(), 2, good);
 }
 
-TEST_F(Flash, AnImageWithoutDescriptorIsRefusedBeforeAnyRobotIsTouched)
+// An image the robots' bootloaders would refuse takes no robot out of
+// service: `aseba flash` checks it whole before it reboots any.
+TEST_F(Flash, ImagesTheBootloaderWouldRefuseAreRefusedBeforeAnyRobotIsTouched)
 {
-    aseba::flash::ProgramImage image = test_application(0x22);
-    image.instructions.erase(image.instructions.lower_bound(BOOT_DESCRIPTOR_ADDRESS),
-                             image.instructions.end());
-    std::string file = write_image("bare.hex", image);
-
-    CommandResult flash = aseba({ "flash", file });
-    EXPECT_EQ(flash.exit_code, 1);
-    EXPECT_TRUE(contains(flash.err, "no application descriptor")) << flash.err;
-    EXPECT_FALSE(contains(flash.out, "flashing")) << flash.out;
+    aseba::flash::ProgramImage good = test_application(0x33);
+    aseba::flash::ProgramImage bad_data = good;
+    bad_data.instructions[APPLICATION_START + 2 * PC_UNITS_PER_INSTRUCTION] ^= 0x100;
+    aseba::flash::ProgramImage bare = good;
+    bare.instructions.erase(bare.instructions.lower_bound(BOOT_DESCRIPTOR_ADDRESS),
+                            bare.instructions.end());
+    // Two records for the same instructions: once, the last one won.
+    std::string good_text = aseba::flash::write_microchip_hex(good);
+    size_t second_record = good_text.find('\n', good_text.find('\n') + 1) + 1;
+    std::string overlapping =
+      good_text.substr(0, second_record) + good_text.substr(good_text.find('\n') + 1);
+    struct Case {
+        std::string file;
+        std::string complaint;
+    };
+    const Case cases[] = {
+        { write_image("bad-data.hex", bad_data), "the descriptor's CRC is" },
+        { write_image("bare.hex", bare), "no application descriptor" },
+        { scratch_.write("overlap.hex", overlapping), "records overlap" },
+        { scratch_.write("broken.hex", ":020000040000FA\n:0400000000FF\n"), "broken.hex: line 2" },
+        { scratch_.path(), "is a folder, not a HEX file" },
+    };
+    for (const Case &bad : cases) {
+        CommandResult flash = aseba({ "flash", bad.file });
+        EXPECT_EQ(flash.exit_code, 2) << bad.file;
+        EXPECT_TRUE(contains(flash.err, bad.complaint)) << flash.err;
+        EXPECT_TRUE(contains(flash.err, "no robot was touched")) << flash.err;
+        EXPECT_FALSE(contains(flash.out, "flashing")) << flash.out;
+    }
     CommandResult nodes = aseba({ "nodes" });
     EXPECT_EQ(count_lines_with(nodes.out, "running"), GROUP) << nodes.out;
 }
 
-TEST_F(Flash, ACorruptHexFileIsNamedWithItsLine)
-{
-    std::string file = scratch_.write("broken.hex", ":020000040000FA\n:0400000000FF\n");
-    CommandResult flash = aseba({ "flash", file });
-    EXPECT_EQ(flash.exit_code, 1);
-    EXPECT_TRUE(contains(flash.err, "broken.hex: line 2")) << flash.err;
-}
-
 // --memory: what a robot stores (its program, its flash) outlives the
-// emulator, as it outlives a power cycle on the chip.
-TEST(RobotMemory, AStoredProgramRunsAgainInTheNextRun)
+// emulator, as it outlives a power cycle on the chip, even when the
+// emulator is killed (it writes the file as the robot writes its memories).
+class RobotMemory : public testing::TestWithParam<bool>
 {
+};
+
+TEST_P(RobotMemory, AStoredProgramRunsAgainInTheNextRun)
+{
+    const bool killed = GetParam();
     ScratchFolder scratch;
     std::string program = scratch.write("steady.aseba", "leftSpeed = 321\nrightSpeed = -45\n");
     {
@@ -185,7 +218,10 @@ TEST(RobotMemory, AStoredProgramRunsAgainInTheNextRun)
         CommandResult answer = run_console(
           { "-t", emulator.target(), "vars", "leftSpeed", "--node", "2" }, scratch.path());
         ASSERT_EQ(answer.exit_code, 0) << answer.err;
-        emulator.stop();
+        if (killed)
+            emulator.kill_now();
+        else
+            emulator.stop();
     }
     Emulator emulator(2, { "--memory", scratch.path() });
     CommandResult speeds =
@@ -200,5 +236,12 @@ TEST(RobotMemory, AStoredProgramRunsAgainInTheNextRun)
     EXPECT_NE(std::find(lines.begin(), lines.end(), "e-puck 1: leftSpeed = 0"), lines.end())
       << speeds.out;
 }
+
+std::string stopped_or_killed(const testing::TestParamInfo<bool> &parameter)
+{
+    return parameter.param ? "Killed" : "Stopped";
+}
+
+INSTANTIATE_TEST_SUITE_P(StoppedOrKilled, RobotMemory, testing::Bool(), stopped_or_killed);
 
 } // namespace

@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
-#include <sys/socket.h>
+#include <algorithm>
+#include <memory>
 #include <netinet/in.h>
+#include <sys/socket.h>
 #include <thread>
 #include <unistd.h>
 
@@ -213,4 +215,142 @@ TEST(NetworkModel, AssemblesDescriptionsAndSurvivesBadFrames)
         EXPECT_EQ(values[i], int16_t(1 + i));
     // It never answers execution commands: a clear time-out, no hang.
     EXPECT_THROW(network.stop(selected[0]), TimeoutError);
+}
+
+namespace
+{
+
+// A node 6 that speaks protocol 6, and a node 7 whose description stops
+// after its first named variable.
+std::vector<Frame> unusable_nodes_answer(const Frame &frame)
+{
+    std::vector<Frame> replies;
+    auto send = [&](const Message &message, uint16_t source) {
+        replies.push_back(encode(message, source));
+    };
+    Message message = decode(frame);
+    if (std::holds_alternative<ListNodes>(message)) {
+        send(NodePresent{ 6 }, 6);
+        send(NodePresent{ 5 }, 7);
+    } else if (const auto *get = std::get_if<GetNodeDescription>(&message)) {
+        if (get->dest == 6) {
+            send(Description{ "future", 6, 100, 16, 40, 1, 0, 0 }, 6);
+            send(NamedVariableDescription{ { "id", 1 } }, 6);
+        } else {
+            send(Description{ "halting", 5, 100, 16, 40, 2, 1, 0 }, 7);
+            send(NamedVariableDescription{ { "id", 1 } }, 7);
+        }
+    }
+    return replies;
+}
+
+} // namespace
+
+// "no node 'all' on the network" said nothing of why: each node that
+// answered is named with what is wrong with it.
+TEST(NetworkModel, SaysWhyTheNodesThatAnsweredCannotBeUsed)
+{
+    console_test::ScriptedPeer fake(unusable_nodes_answer);
+    Network network(Milliseconds(300));
+    network.connect(fake.target());
+    network.discover();
+    ASSERT_EQ(network.node_keys().size(), 2u);
+    try {
+        network.select("all");
+        FAIL() << "selected an unusable node";
+    } catch (const NetworkError &error) {
+        std::string text = error.what();
+        EXPECT_NE(text.find("future 6 speaks protocol 6, this tool speaks protocols 4 and 5"),
+                  std::string::npos)
+          << text;
+        EXPECT_NE(text.find("node 7 on " + fake.target() +
+                            " (halting) did not finish describing itself within 300 ms: 1 of 2 "
+                            "named variables, 0 of 1 local events, 0 of 0 native functions"),
+                  std::string::npos)
+          << text;
+    }
+}
+
+// A reconnect link (LinkPolicy::reconnect) follows epuck-emu going away and
+// coming back on the same port: it starts down without an exception, comes
+// up with the emulator, goes down when it is killed (its nodes forgotten),
+// and comes back by itself with the new emulator's nodes described.
+TEST(NetworkLinks, AReconnectLinkFollowsTheEmulatorGoingAndComing)
+{
+    const uint16_t port = console_test::find_free_port();
+    const Milliseconds limit(5000); // for what must happen (attempts are 500 ms apart)
+    Network network;
+    std::vector<std::pair<LinkState, std::string>> changes;
+    network.set_link_listener([&](size_t target, LinkState state, const std::string &reason) {
+        EXPECT_EQ(target, 0u);
+        changes.push_back({ state, reason });
+    });
+    size_t target = network.connect("tcp:127.0.0.1;" + std::to_string(port), LinkPolicy::reconnect);
+    EXPECT_EQ(network.link_state(target), LinkState::down);
+    network.wait_until([&] { return !changes.empty(); }, limit);
+    ASSERT_EQ(changes.size(), 1u);
+    EXPECT_EQ(changes[0].first, LinkState::down);
+    EXPECT_NE(changes[0].second.find("cannot connect"), std::string::npos) << changes[0].second;
+    EXPECT_EQ(network.link_error(target), changes[0].second);
+    EXPECT_THROW(network.send(target, ListNodes{ PROTOCOL_VERSION }), TransportError);
+
+    auto described = [&](size_t count) {
+        return [&network, count] {
+            std::vector<NodeKey> keys = network.node_keys();
+            return keys.size() == count && std::all_of(keys.begin(), keys.end(), [&](NodeKey key) {
+                       return network.node(key).described;
+                   });
+        };
+    };
+    {
+        Emulator emulator(2, {}, port);
+        ASSERT_TRUE(network.wait_until(described(2), limit));
+        EXPECT_EQ(network.link_state(target), LinkState::up);
+        EXPECT_EQ(changes.back().first, LinkState::up);
+        emulator.kill_now();
+        ASSERT_TRUE(
+          network.wait_until([&] { return network.link_state(target) == LinkState::down; }, limit));
+        EXPECT_TRUE(network.node_keys().empty());
+        EXPECT_EQ(changes.back().first, LinkState::down);
+    }
+    Emulator emulator(3, {}, port);
+    ASSERT_TRUE(network.wait_until(described(3), limit));
+    EXPECT_EQ(network.link_state(target), LinkState::up);
+    EXPECT_TRUE(network.link_error(target).empty());
+    EXPECT_EQ(network.select("all").size(), 3u);
+}
+
+// The default policy fails fast: a link that drops is an error of poll().
+TEST(NetworkLinks, AFailFastLinkThatDropsIsAnError)
+{
+    auto emulator = std::make_unique<Emulator>(1);
+    Network network;
+    network.connect(emulator->target());
+    network.discover();
+    emulator->kill_now();
+    EXPECT_THROW(network.wait_until([] { return false; }, Milliseconds(3000)), TransportError);
+}
+
+// wake() from another thread ends a poll() long before its time.
+TEST(NetworkLinks, WakeEndsAPollFromAnotherThread)
+{
+    Emulator emulator(1);
+    Network network;
+    network.connect(emulator.target());
+    network.discover();
+    const Milliseconds long_poll(30000);
+    std::thread waker([&] {
+        std::this_thread::sleep_for(Milliseconds(50));
+        network.wake();
+    });
+    auto start = Clock::now();
+    network.poll(long_poll);
+    auto waited = Clock::now() - start;
+    waker.join();
+    EXPECT_LT(waited, long_poll / 2);
+    // Woken before it starts, the next poll returns at once too.
+    network.wake();
+    start = Clock::now();
+    network.poll(long_poll);
+    EXPECT_LT(Clock::now() - start, long_poll / 2);
 }

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <dirent.h>
+#include <filesystem>
 #include <fstream>
 #include <netinet/in.h>
 #include <poll.h>
@@ -20,9 +21,6 @@ namespace interop
 namespace
 {
 
-// Where the tests find the emulator when EPUCK_EMU does not say (tests run
-// from the repository root).
-constexpr const char *default_emulator_path = "build/host/bin/epuck-emu";
 constexpr const char *programs_folder = "tests/interop/programs/";
 // The emulator stops by itself after this long, in case everything else
 // failed to stop it; no test runs that long.
@@ -122,13 +120,22 @@ std::string program_path(const std::string &name)
     return programs_folder + name;
 }
 
+// build/VARIANT/bin beside build/VARIANT/tests, or the bin folder itself for
+// a benchmark program.
+std::string our_program_path(const std::string &name)
+{
+    std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe");
+    return (self.parent_path().parent_path() / "bin" / name).string();
+}
+
 EmulatedRobots::EmulatedRobots(const ScratchFolder &scratch, unsigned robots)
 {
     const char *configured = std::getenv("EPUCK_EMU");
-    std::string emulator = configured && *configured ? configured : default_emulator_path;
+    // Unless EPUCK_EMU says otherwise, the emulator of the same build.
+    std::string emulator = configured && *configured ? configured : our_program_path("epuck-emu");
     if (access(emulator.c_str(), X_OK) != 0)
         throw std::runtime_error(emulator + " is not an executable (build it with `make " +
-                                 default_emulator_path + "` or set EPUCK_EMU)");
+                                 emulator + "` or set EPUCK_EMU)");
 
     std::string log = scratch.file("epuck-emu.log");
     for (int attempt = 0; attempt < emulator_start_attempts; attempt++) {

@@ -48,6 +48,10 @@ std::string tcp_target(uint16_t port);
 // The path of a test program in tests/interop/programs/.
 std::string program_path(const std::string &name);
 
+// One of our programs (epuck-emu, epuck-image) of the same build as the
+// running test or benchmark: build/VARIANT/bin/NAME.
+std::string our_program_path(const std::string &name);
+
 // epuck-emu with `robots` robots on a free port, listening when constructed
 // (throws with the emulator's output otherwise); stopped on destruction.
 class EmulatedRobots

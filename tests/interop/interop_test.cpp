@@ -4,14 +4,18 @@
 // would (../shared/research/reference-tools.md), and observes the robots
 // with an independent protocol client (aseba_client.hpp).
 //
-// The emulator is taken from $EPUCK_EMU, by default build/host/bin/epuck-emu.
+// The emulator is taken from $EPUCK_EMU, by default the one of the test's own
+// build (build/host-sanitize/bin/epuck-emu under `make test`).
 
 #include "aseba_client.hpp"
 #include "interop_support.hpp"
+#include "tests/bootloader/test_images.hpp"
+#include "tools/compiler/aesl.hpp"
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 #include "tools/flash/hex_image.hpp"
 
@@ -622,20 +626,29 @@ bool answers_as_node(AsebaClient &client, uint16_t robot, Milliseconds timeout)
     return client.receive_until(from_node(message::node_present, robot), timeout).has_value();
 }
 
+// `asebacmd whex ROBOT FILE reset`, which must report the write complete.
+void flash_with_asebacmd(const ScratchFolder &scratch,
+                         const EmulatedRobots &robots,
+                         uint16_t robot,
+                         const std::string &file)
+{
+    ToolRun run =
+      run_tool(scratch,
+               "asebacmd.log",
+               { "asebacmd", "-t", robots.target(), "whex", std::to_string(robot), file, "reset" },
+               tool_timeout);
+    EXPECT_TRUE(run.finished_in_time && run.exit_code == 0) << run.how_it_ended << "\n"
+                                                            << run.output;
+    EXPECT_NE(run.output.find("Write completed"), std::string::npos) << run.output;
+}
+
 TEST(Interop, AsebacmdWhexFlashesARobotThroughItsBootloader)
 {
     const uint16_t robot_count = 2, flashed = 2;
     ScratchFolder scratch;
     EmulatedRobots robots(scratch, robot_count);
     auto whex = [&](const std::string &file) {
-        ToolRun run = run_tool(
-          scratch,
-          "asebacmd.log",
-          { "asebacmd", "-t", robots.target(), "whex", std::to_string(flashed), file, "reset" },
-          tool_timeout);
-        EXPECT_TRUE(run.finished_in_time && run.exit_code == 0) << run.how_it_ended << "\n"
-                                                                << run.output;
-        EXPECT_NE(run.output.find("Write completed"), std::string::npos) << run.output;
+        flash_with_asebacmd(scratch, robots, flashed, file);
     };
 
     // A refused image: every page is acknowledged, but the bootloader finds
@@ -653,6 +666,117 @@ TEST(Interop, AsebacmdWhexFlashesARobotThroughItsBootloader)
     AsebaClient client(robots.port(), answer_timeout);
     EXPECT_TRUE(answers_as_node(client, flashed, answer_timeout));
     EXPECT_TRUE(answers_as_node(client, first_robot, answer_timeout));
+}
+
+// The image epuck-image writes for the Aseba bootloader, from XC16-style
+// HEX files with unprogrammed words inside the application
+// (tests/bootloader/hex/application.hex): asebacmd writes zeros where a
+// page has no data and skips pages with none, so written with its gaps the
+// image does not match its descriptor's CRC and the robot stays in its
+// bootloader; epuck-image writes every word of the pages, and it starts.
+TEST(Interop, AsebacmdWhexFlashesTheImageEpuckImageWrites)
+{
+    const uint16_t robot_count = 2, flashed = 2;
+    ScratchFolder scratch;
+    std::string bootloader = scratch.file("bootloader.hex");
+    std::ofstream(bootloader) << aseba::flash::write_microchip_hex(
+      bootloader_test::bootloader_image());
+    std::string application = "tests/bootloader/hex/application.hex";
+    std::string output = scratch.file("epuck-aseba.hex");
+    ToolRun built = run_tool(scratch,
+                             "epuck-image.log",
+                             { our_program_path("epuck-image"),
+                               application,
+                               bootloader,
+                               output,
+                               scratch.file("factory.hex") },
+                             tool_timeout);
+    ASSERT_TRUE(built.finished_in_time && built.exit_code == 0) << built.how_it_ended << "\n"
+                                                                << built.output;
+    std::string with_gaps = scratch.file("with-gaps.hex");
+    std::ofstream(with_gaps) << aseba::flash::write_microchip_hex(
+      bootloader_test::application_image());
+
+    EmulatedRobots robots(scratch, robot_count);
+    auto whex = [&](const std::string &file) {
+        flash_with_asebacmd(scratch, robots, flashed, file);
+    };
+    whex(with_gaps);
+    {
+        AsebaClient client(robots.port(), answer_timeout);
+        EXPECT_FALSE(answers_as_node(client, flashed, 1500ms));
+    }
+    whex(output);
+    AsebaClient client(robots.port(), answer_timeout);
+    EXPECT_TRUE(answers_as_node(client, flashed, answer_timeout));
+    EXPECT_TRUE(answers_as_node(client, first_robot, answer_timeout));
+}
+
+// --- 8. .aesl projects our writer wrote ------------------------------------
+
+// A project written by tools/compiler/aesl's writer reads back equal, and
+// asebamassloader takes it as its own: each robot gets the program of its
+// node id, with the project's constant, and runs it.
+TEST(Interop, MassloaderLoadsAProjectOurWriterWrote)
+{
+    aseba::AeslProject project;
+    project.definitions.events = { { "ping", 1 }, { "report", 2 } };
+    // Positive: asebamassloader reads constants as unsigned (aesl.md §2.1).
+    project.definitions.constants = { { "STEP", 7 } };
+    for (uint16_t id = 1; id <= 2; id++) {
+        aseba::AeslNode node;
+        node.name = epuck_name;
+        node.node_id = id;
+        node.source = "leftSpeed = " + std::to_string(id) + " * STEP\n" +
+                      "timer.period = 10\n"
+                      "onevent timer\n"
+                      "  if rightSpeed < 1000 then\n"
+                      "    rightSpeed = rightSpeed + 1\n"
+                      "  end\n"
+                      "onevent ping\n"
+                      "  emit report [id, args[0]]\n";
+        project.nodes.push_back(node);
+    }
+    ScratchFolder scratch;
+    std::string file = scratch.file("written.aesl");
+    std::ofstream(file) << aseba::write_aesl(project);
+
+    std::ifstream written(file);
+    std::string text((std::istreambuf_iterator<char>(written)), std::istreambuf_iterator<char>());
+    aseba::AeslReadResult read = aseba::read_aesl(text);
+    ASSERT_TRUE(read.ok) << read.error;
+    ASSERT_EQ(read.project.nodes.size(), 2u);
+    EXPECT_EQ(read.project.definitions.events.size(), 2u);
+    EXPECT_EQ(read.project.definitions.constants.at(0).value, 7);
+    for (size_t i = 0; i < 2; i++) {
+        EXPECT_EQ(read.project.nodes[i].source, project.nodes[i].source);
+        EXPECT_EQ(read.project.nodes[i].node_id, project.nodes[i].node_id);
+    }
+
+    EmulatedRobots robots(scratch, 2);
+    ToolRun loader = run_tool(scratch,
+                              "massloader.log",
+                              { "asebamassloader", "--once", file, robots.target() },
+                              tool_timeout);
+    ASSERT_TRUE(loader.finished_in_time) << loader.how_it_ended << "\n" << loader.output;
+    EXPECT_EQ(loader.exit_code, 0) << loader.output;
+
+    AsebaClient client(robots.port(), answer_timeout);
+    for (uint16_t id = 1; id <= 2; id++) {
+        SCOPED_TRACE("robot " + std::to_string(id));
+        NodeDescription description = describe_epuck(client, id);
+        EXPECT_EQ(
+          poll_variable(
+            client, id, address_of(description, "leftSpeed"), int16_t(7 * id), answer_timeout),
+          7 * id);
+        // Its timer handler runs: rightSpeed climbs.
+        uint16_t right_speed = address_of(description, "rightSpeed");
+        auto first = read_variable(client, id, right_speed);
+        std::this_thread::sleep_for(10 * 10ms);
+        auto later = read_variable(client, id, right_speed);
+        ASSERT_TRUE(first && later);
+        EXPECT_GT(*later, *first);
+    }
 }
 
 } // namespace

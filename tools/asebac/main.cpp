@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "run.hpp"
+#include "tools/command_line/command_line.hpp"
 #include "tools/compiler/compiler.hpp"
 #include "tools/compiler/disassembler.hpp"
 #include "tools/compiler/program_file.hpp"
@@ -24,47 +25,25 @@ namespace
 using namespace aseba;
 
 constexpr unsigned long DEFAULT_STEP_BUDGET = 10000;
-constexpr int EXIT_USAGE = 2;
+constexpr int EXIT_USAGE = command_line::EXIT_USAGE;
 
-const char *const HELP =
+const char *const USAGE =
   R"(usage: asebac [options] FILE        compile FILE (a script or an .aesl project; - for stdin)
-       asebac run [options] FILE    compile FILE and run it on the host VM
+       asebac run [options] FILE    compile FILE and run it on the host VM)";
 
-Target and definitions:
-  --target NAME|FILE.json  the node to compile for: epuck (default), dummy (the
-                           reference's asebadummynode), or a target description
-                           file (docs/target-description.md)
-  --node NAME              in an .aesl project, the node whose program to take
-                           (default: the first one)
-  --event NAME[:SIZE]      declare a global event of SIZE words (default 0), for
-                           scripts; an .aesl project declares its own.
-                           With `run`: --event NAME[:a,b,...] sends the event
-                           with these arguments after init (repeatable, in order);
-                           a global event not declared otherwise is declared with
-                           the number of arguments given
-  --constant NAME=VALUE    declare a global constant (scripts only)
+const char *const DESCRIPTION =
+  R"(With no output option, asebac only checks the program and says how big it
+is. Compile errors are printed as file:line:column with the line and a caret.
+An .aesl project declares its own events and constants; --event and
+--constant declare them for scripts.)";
 
-Outputs (compile):
-  -o FILE                  write the bytecode to FILE (- for stdout)
-  --format binary|hex|c    bytecode format: binary (16-bit little-endian words),
-                           hex (one 0xXXXX word per line, the default) or c
-                           (a C array)
-  --listing                print the disassembly with source lines
-  --variables              print the variable map: name, address, size (locals
-                           too, with their handler or subroutine)
-  With no output option, asebac only checks the program and says how big it is.
-
-Running (run):
-  --steps N                instruction budget of init and of each event (default
-                           10000); an event still running after it is reported
-                           as unfinished
-  The report is JSON: every named and user variable, the events the program
-  emitted, run-time errors and unfinished events. After a run-time error the
-  following events still run.
-
-Exit status: 0 on success, 1 on a compile error (printed as file:line:column),
-2 on bad usage or unreadable files.
-)";
+const char *const RUN_DESCRIPTION =
+  R"(Compiles FILE, runs its init code and then each --event on the host VM, and
+prints a JSON report: every named and user variable, the events the program
+emitted, run-time errors and unfinished events. After a run-time error the
+following events still run. With run, --event NAME[:a,b,...] sends the event
+with these arguments after init (repeatable, in order); a global event not
+declared otherwise is declared with the number of arguments given.)";
 
 struct Options {
     bool run = false;
@@ -82,7 +61,7 @@ struct Options {
 
 [[noreturn]] void usage_error(const std::string &message)
 {
-    std::cerr << "asebac: " << message << "\n(asebac --help for usage)\n";
+    command_line::print_usage_error("asebac", message);
     std::exit(EXIT_USAGE);
 }
 
@@ -97,55 +76,78 @@ std::optional<long> parse_integer(const std::string &text)
     return value;
 }
 
+// The options of both forms; those given before `run` reach it too.
+void add_common_options(CLI::App &app, Options &options)
+{
+    app.add_option("FILE", options.input, "a script, or an .aesl project (- for standard input)")
+      ->required()
+      ->type_name("");
+    app
+      .add_option("--target",
+                  options.target,
+                  "the node to compile for: epuck (default), dummy (the reference's\n"
+                  "asebadummynode), or a target description file\n"
+                  "(docs/target-description.md)")
+      ->type_name("NAME|FILE");
+    app
+      .add_option("--node",
+                  options.node,
+                  "in an .aesl project, the node whose program to take (default: the\n"
+                  "first one)")
+      ->type_name("NAME");
+    app
+      .add_option("--event",
+                  options.event_options,
+                  "NAME[:SIZE]: declare a global event of SIZE words (default 0), for\n"
+                  "scripts; with run: NAME[:a,b,...], see above")
+      ->allow_extra_args(false)
+      ->type_name("NAME[:SIZE]");
+}
+
 Options parse_options(int argc, char **argv)
 {
     Options options;
-    int i = 1;
-    if (argc > 1 && std::string(argv[1]) == "run") {
-        options.run = true;
-        i = 2;
-    }
-    auto value = [&](const std::string &option) -> std::string {
-        if (i + 1 >= argc)
-            usage_error(option + " needs a value");
-        return argv[++i];
-    };
-    for (; i < argc; ++i) {
-        std::string argument = argv[i];
-        if (argument == "--help" || argument == "-h") {
-            std::cout << HELP;
-            std::exit(0);
-        } else if (argument == "--target") {
-            options.target = value(argument);
-        } else if (argument == "--node") {
-            options.node = value(argument);
-        } else if (argument == "--event") {
-            options.event_options.push_back(value(argument));
-        } else if (argument == "--constant") {
-            options.constant_options.push_back(value(argument));
-        } else if (argument == "-o") {
-            options.output = value(argument);
-        } else if (argument == "--format") {
-            options.format = value(argument);
-            if (options.format != "binary" && options.format != "hex" && options.format != "c")
-                usage_error("unknown format " + options.format);
-        } else if (argument == "--listing") {
-            options.listing = true;
-        } else if (argument == "--variables") {
-            options.variables = true;
-        } else if (argument == "--steps") {
-            std::optional<long> steps = parse_integer(value(argument));
-            if (!steps || *steps <= 0)
-                usage_error("--steps needs a positive number");
-            options.steps = static_cast<unsigned long>(*steps);
-        } else if (argument.size() > 1 && argument[0] == '-' && argument != "-") {
-            usage_error("unknown option " + argument);
-        } else if (options.input.empty()) {
-            options.input = argument;
-        } else {
-            usage_error("only one input file is allowed");
-        }
-    }
+    CLI::App app(DESCRIPTION, "asebac");
+    auto formatter = command_line::use_common_style(app);
+    formatter->set_usage(&app, USAGE);
+    app.footer(command_line::EXIT_STATUS_TEXT);
+    app.fallthrough();
+    add_common_options(app, options);
+    app
+      .add_option("--constant",
+                  options.constant_options,
+                  "NAME=VALUE: declare a global constant (scripts only)")
+      ->allow_extra_args(false)
+      ->type_name("NAME=VALUE");
+    app.add_option("-o", options.output, "write the bytecode to FILE (- for standard output)")
+      ->type_name("FILE");
+    app
+      .add_option("--format",
+                  options.format,
+                  "bytecode format: binary (16-bit little-endian words), hex (one\n"
+                  "0xXXXX word per line, the default) or c (a C array)")
+      ->check(CLI::IsMember({ "binary", "hex", "c" }))
+      ->type_name("FORMAT");
+    app.add_flag("--listing", options.listing, "print the disassembly with source lines");
+    app.add_flag("--variables",
+                 options.variables,
+                 "print the variable map: name, address, size (locals too, with their handler or subroutine)");
+
+    CLI::App *run = app.add_subcommand("run", "compile FILE and run it on the host VM");
+    formatter->set_usage(run, "usage: asebac run [options] FILE", RUN_DESCRIPTION);
+    add_common_options(*run, options);
+    run
+      ->add_option("--steps",
+                   options.steps,
+                   "instruction budget of init and of each event (default 10000); an\n"
+                   "event still running after it is reported as unfinished")
+      ->check(CLI::Range(1ul, 1000000000ul))
+      ->type_name("N");
+    // `asebac run` takes the file as its own argument.
+    app.get_option("FILE")->required(false);
+
+    command_line::parse_or_exit(app, argc, argv);
+    options.run = run->parsed();
     if (options.input.empty())
         usage_error("no input file");
     return options;

@@ -6,9 +6,14 @@ LIBRARIES += aseba_client
 aseba_client_SOURCES := \
     tools/client/wire.cpp \
     tools/client/messages.cpp \
+    tools/client/byte_stream.cpp \
     tools/client/transport.cpp \
     tools/client/program.cpp \
     tools/client/variables.cpp \
     tools/client/network.cpp \
+    tools/client/network_links.cpp \
     tools/client/flasher.cpp \
     tools/client/message_text.cpp
+# Links over standalone asio (Debian libasio-dev, header only), kept out of
+# the library's public headers; its resolver runs in a thread of its own.
+aseba_client_LDLIBS := -pthread

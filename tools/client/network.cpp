@@ -4,17 +4,12 @@
 #include "network.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
-#include <poll.h>
 
 namespace aseba::client
 {
 
 namespace
 {
-
-constexpr size_t READ_CHUNK = 4096;
 
 bool is_number(const std::string &text)
 {
@@ -30,11 +25,6 @@ bool description_complete(const Description &header, const TargetDescription &pa
 }
 
 } // namespace
-
-struct Network::Link {
-    std::unique_ptr<Transport> transport;
-    FrameAssembler assembler;
-};
 
 std::string ExecutionState::name() const
 {
@@ -52,86 +42,9 @@ std::string Node::label() const
     return "node " + std::to_string(key.id);
 }
 
-Network::Network(Milliseconds answer_timeout)
-  : answer_timeout_(answer_timeout)
-{
-}
-
-Network::~Network() = default;
-
-size_t Network::connect(const std::string &target)
-{
-    TargetAddress address = parse_target(target);
-    auto link = std::make_unique<Link>();
-    link->transport = open_transport(address, int(answer_timeout_.count()));
-    links_.push_back(std::move(link));
-    return links_.size() - 1;
-}
-
-size_t Network::target_count() const
-{
-    return links_.size();
-}
-
-std::string Network::target_name(size_t target) const
-{
-    return links_.at(target)->transport->name();
-}
-
-void Network::send(size_t target, const Message &message)
-{
-    std::vector<uint8_t> bytes = serialize_frame(encode(message));
-    links_.at(target)->transport->write(bytes.data(), bytes.size(), int(answer_timeout_.count()));
-}
-
-void Network::send_to_all(const Message &message)
-{
-    for (size_t target = 0; target < links_.size(); target++)
-        send(target, message);
-}
-
 void Network::set_listener(std::function<void(const ReceivedFrame &)> listener)
 {
     listener_ = std::move(listener);
-}
-
-void Network::poll(Milliseconds timeout)
-{
-    std::vector<pollfd> waiting;
-    for (const auto &link : links_)
-        waiting.push_back({ link->transport->fd(), POLLIN, 0 });
-    int ready = ::poll(waiting.data(), waiting.size(), int(timeout.count()));
-    if (ready < 0 && errno != EINTR)
-        throw TransportError(std::string("waiting for the network failed: ") +
-                             std::strerror(errno));
-    if (ready <= 0)
-        return;
-    for (size_t target = 0; target < links_.size(); target++) {
-        if (waiting[target].revents == 0)
-            continue;
-        Link &link = *links_[target];
-        uint8_t buffer[READ_CHUNK];
-        size_t count = link.transport->read(buffer, sizeof buffer);
-        try {
-            link.assembler.feed(buffer, count);
-            while (std::optional<Frame> frame = link.assembler.next())
-                handle(target, std::move(*frame));
-        } catch (const ProtocolError &error) {
-            throw ProtocolError(link.transport->name() + ": " + error.what());
-        }
-    }
-}
-
-bool Network::wait_until(const std::function<bool()> &done, Milliseconds timeout)
-{
-    const auto deadline = Clock::now() + timeout;
-    while (!done()) {
-        auto left = std::chrono::duration_cast<Milliseconds>(deadline - Clock::now());
-        if (left.count() <= 0)
-            return false;
-        poll(left);
-    }
-    return true;
 }
 
 void Network::handle(size_t target, Frame frame)
@@ -171,8 +84,11 @@ void Network::update_model(size_t target, const Frame &frame, const Message &mes
         last_new_node_ = node.last_seen;
 
     const auto *present = std::get_if<NodePresent>(&message);
-    if (present != nullptr)
+    if (present != nullptr) {
         node.protocol_version = present->version;
+        if (!first_answer_)
+            first_answer_ = node.last_seen;
+    }
     // A new node (heard through any message) or an undescribed one that
     // says it is present is asked for its description (protocol.md §6.1);
     // asking again restarts a description that lost a part on the way.
@@ -221,17 +137,30 @@ void Network::update_model(size_t target, const Frame &frame, const Message &mes
     }
 }
 
-void Network::discover(Milliseconds settle)
+void Network::discover(std::optional<Milliseconds> quiet)
 {
-    const auto deadline = Clock::now() + answer_timeout_;
-    last_new_node_ = Clock::now();
-    last_list_nodes_ = last_new_node_;
+    const auto start = Clock::now();
+    const auto deadline = start + answer_timeout_;
+    last_new_node_ = start;
+    last_list_nodes_ = start;
+    first_answer_.reset();
     send_to_all(ListNodes{ PROTOCOL_VERSION });
+    // How long to wait for more nodes once every node that answered is
+    // described: twice the first answer's round trip, or a fixed time for
+    // nodes that never answer LIST_NODES (before protocol 5).
+    auto quiet_period = [&]() -> Milliseconds {
+        if (quiet)
+            return *quiet;
+        if (!first_answer_)
+            return DISCOVERY_QUIET_WITHOUT_ANSWER;
+        auto round_trip = std::chrono::ceil<Milliseconds>(*first_answer_ - start);
+        return std::clamp(2 * round_trip, DISCOVERY_QUIET_MIN, answer_timeout_);
+    };
     while (true) {
         auto now = Clock::now();
         bool all_described = std::all_of(
           nodes_.begin(), nodes_.end(), [](const auto &entry) { return entry.second.described; });
-        auto quiet_until = last_new_node_ + settle;
+        auto quiet_until = last_new_node_ + quiet_period();
         if (!nodes_.empty() && all_described && now >= quiet_until)
             return;
         if (now >= deadline)
@@ -284,11 +213,12 @@ const Node &Network::described_node(NodeKey key) const
 {
     const Node &found = node(key);
     if (!found.described)
-        throw NetworkError(found.label() + " on " + target_name(key.target) +
-                           " has not sent its description");
+        throw NetworkError(description_problem(key));
     if (!found.compatible)
-        throw NetworkError(found.label() + " speaks protocol version " +
-                           std::to_string(found.protocol_version) + ", not 4 or 5");
+        throw NetworkError(found.label() + " speaks protocol " +
+                           std::to_string(found.protocol_version) +
+                           ", this tool speaks protocols " + std::to_string(MIN_PROTOCOL_VERSION) +
+                           " and " + std::to_string(PROTOCOL_VERSION));
     return found;
 }
 
@@ -304,15 +234,63 @@ std::vector<NodeKey> Network::select(const std::string &selector) const
         if (matches)
             selected.push_back(key);
     }
-    if (selected.empty()) {
-        std::string known;
-        for (const auto &[key, node] : nodes_)
-            known += (known.empty() ? "" : ", ") + node.label();
-        throw NetworkError("no node '" + selector + "' on the network (" +
-                           (known.empty() ? std::string("no node answered") : "nodes: " + known) +
-                           ")");
-    }
+    if (selected.empty())
+        no_usable_node(selector);
     return selected;
+}
+
+void Network::no_usable_node(const std::string &selector) const
+{
+    // Nodes that answered but cannot be used, and why; a node not described
+    // has no name yet, so it may be the one a name selects.
+    std::string reasons;
+    std::string known;
+    for (const auto &[key, node] : nodes_) {
+        known += (known.empty() ? "" : ", ") + node.label();
+        bool may_match =
+          selector == "all" || !is_number(selector) || std::to_string(key.id) == selector;
+        if (!may_match)
+            continue;
+        std::string reason;
+        if (node.described && !node.compatible)
+            reason = node.label() + " speaks protocol " + std::to_string(node.protocol_version) +
+                     ", this tool speaks protocols " + std::to_string(MIN_PROTOCOL_VERSION) +
+                     " and " + std::to_string(PROTOCOL_VERSION);
+        else if (!node.described)
+            reason = description_problem(key);
+        if (!reason.empty())
+            reasons += (reasons.empty() ? "" : "; ") + reason;
+    }
+    if (!reasons.empty())
+        throw NetworkError("no usable node '" + selector + "' on the network: " + reasons);
+    throw NetworkError("no node '" + selector + "' on the network (" +
+                       (known.empty() ? std::string("no node answered") : "nodes: " + known) + ")");
+}
+
+std::string Network::description_problem(NodeKey key) const
+{
+    const Node &node = nodes_.at(key);
+    std::string who = node.label() + " on " + target_name(key.target);
+    if (node.protocol_version > PROTOCOL_VERSION ||
+        (node.protocol_version != 0 && node.protocol_version < MIN_PROTOCOL_VERSION))
+        return who + " announced protocol " + std::to_string(node.protocol_version) +
+               " and did not describe itself (this tool speaks protocols " +
+               std::to_string(MIN_PROTOCOL_VERSION) + " and " + std::to_string(PROTOCOL_VERSION) +
+               ")";
+    auto assembly = assemblies_.find(key);
+    if (assembly == assemblies_.end())
+        return who + " did not send its description within " +
+               std::to_string(answer_timeout_.count()) + " ms";
+    const Description &header = assembly->second.header;
+    const TargetDescription &parts = assembly->second.parts;
+    return who + " (" + header.name + ") did not finish describing itself within " +
+           std::to_string(answer_timeout_.count()) +
+           " ms: " + std::to_string(parts.named_variables.size()) + " of " +
+           std::to_string(header.named_variables_count) + " named variables, " +
+           std::to_string(parts.local_events.size()) + " of " +
+           std::to_string(header.local_events_count) + " local events, " +
+           std::to_string(parts.native_functions.size()) + " of " +
+           std::to_string(header.native_functions_count) + " native functions arrived";
 }
 
 void Network::timed_out(NodeKey key, const std::string &what) const

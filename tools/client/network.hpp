@@ -4,6 +4,9 @@
 // limit. It never prints and never exits: failures are exceptions
 // (TransportError, ProtocolError, TimeoutError, NetworkError) whose what()
 // is a sentence for people.
+//
+// A Network is used by one thread; only wake() may be called from others.
+// Its links run on standalone asio, which this header does not include.
 
 #pragma once
 
@@ -31,6 +34,25 @@ constexpr Milliseconds DEFAULT_ANSWER_TIMEOUT{ 1000 };
 constexpr unsigned DEFAULT_MAX_LINE_STEPS = 10000; // a line that loops on itself
 constexpr Milliseconds LIST_NODES_PERIOD{ 1000 };  // as Aseba Studio
 constexpr Milliseconds NODE_SILENCE_LIMIT{ 3000 }; // then a node counts as gone
+constexpr Milliseconds RECONNECT_PERIOD{ 500 };    // between attempts on a link that is down
+// discover()'s wait for more nodes: at least this, and this when no node
+// answers LIST_NODES (protocol 4 nodes do not).
+constexpr Milliseconds DISCOVERY_QUIET_MIN{ 5 };
+constexpr Milliseconds DISCOVERY_QUIET_WITHOUT_ANSWER{ 150 };
+
+// What a link does when its target cannot be reached or goes away.
+enum class LinkPolicy {
+    // connect() throws, and so does poll() when the link drops: a command
+    // line tool fails fast with a clear error.
+    fail_fast,
+    // connect() never throws for an unreachable target: the link starts
+    // down and poll() tries again every RECONNECT_PERIOD, without waiting
+    // for long. A link that drops is marked down and its nodes forgotten;
+    // back up, its nodes are discovered again. For long-running tools.
+    reconnect,
+};
+
+enum class LinkState { up, down };
 
 // A node that did not answer in time.
 class TimeoutError : public std::runtime_error
@@ -106,10 +128,26 @@ class Network
     Network(const Network &) = delete;
     Network &operator=(const Network &) = delete;
 
-    // Connects to a target string (transport.hpp); returns its index.
-    size_t connect(const std::string &target);
+    // Connects to a target string (transport.hpp); returns its index. With
+    // fail_fast, throws TransportError when the target cannot be reached
+    // within the answer timeout; with reconnect, only for a malformed
+    // target string.
+    size_t connect(const std::string &target, LinkPolicy policy = LinkPolicy::fail_fast);
     size_t target_count() const;
     std::string target_name(size_t target) const;
+
+    // Whether link `target` is up now, and why it went down (empty when up).
+    LinkState link_state(size_t target) const;
+    std::string link_error(size_t target) const;
+
+    // Called from poll() when a link goes down (with the reason) or comes
+    // back up (reconnect links).
+    void set_link_listener(
+      std::function<void(size_t target, LinkState state, const std::string &reason)> listener);
+
+    // Makes a poll() in progress, or the next one, return promptly. The only
+    // member that may be called from any thread.
+    void wake();
 
     // The time every command waits for an answer.
     Milliseconds answer_timeout() const
@@ -117,10 +155,12 @@ class Network
         return answer_timeout_;
     }
 
-    // Broadcasts LIST_NODES on every link and collects the nodes that answer
-    // and their descriptions. Returns once every present node is described
-    // and no new node appeared for `settle`, or after the answer timeout.
-    void discover(Milliseconds settle = Milliseconds(150));
+    // Broadcasts LIST_NODES on every link that is up and collects the nodes
+    // that answer and their descriptions. Returns as soon as every node that
+    // answered has described itself and no new node appeared for `quiet`
+    // (default: twice the time the first node took to answer, which is how
+    // far apart the nodes' answers may be), or after the answer timeout.
+    void discover(std::optional<Milliseconds> quiet = std::nullopt);
 
     // For long sessions (monitors, an IDE): broadcasts LIST_NODES if the last
     // one is older than a second, so that nodes keep showing they are alive
@@ -135,15 +175,20 @@ class Network
     const Node &node(NodeKey key) const;
 
     // The described nodes matching `selector`: "all", a node id, or a node
-    // name (every node of that name). Throws NetworkError when none match.
+    // name (every node of that name). Throws NetworkError when none match,
+    // saying why the nodes that answered cannot be used (a description that
+    // never completed, another protocol version).
     std::vector<NodeKey> select(const std::string &selector) const;
 
-    // Sends `message` on one link (`target`), or on every link.
+    // Sends `message` on one link (`target`; TransportError when it is
+    // down), or on every link that is up.
     void send(size_t target, const Message &message);
     void send_to_all(const Message &message);
 
     // Reads what the links have, waiting at most `timeout` for the first
-    // bytes; updates the model and calls the listener for every frame.
+    // bytes (or a link going up or down, or wake()); updates the model and
+    // calls the listeners for every frame and link change. Reconnect links
+    // that are down are tried again from here.
     void poll(Milliseconds timeout);
 
     // Polls until `done()` is true (true) or `timeout` passes (false).
@@ -199,6 +244,17 @@ class Network
 
   private:
     struct Link;
+    struct Io; // the asio context the links run on
+    void start_reading(size_t target);
+    void open_link(size_t target);
+    // Handles what the links' handlers left: bytes, failures, openings.
+    // Returns whether anything happened.
+    bool process_links();
+    void link_went_down(size_t target, std::string reason);
+    void forget_nodes(size_t target);
+    [[noreturn]] void no_usable_node(const std::string &selector) const;
+    // Why node `key`, which answered, has no complete description.
+    std::string description_problem(NodeKey key) const;
     // A description being received: the header, then its parts in order.
     struct DescriptionAssembly {
         Description header;
@@ -220,7 +276,9 @@ class Network
     [[noreturn]] void timed_out(NodeKey key, const std::string &what) const;
 
     Milliseconds answer_timeout_;
+    std::unique_ptr<Io> io_;
     std::vector<std::unique_ptr<Link>> links_;
+    std::function<void(size_t, LinkState, const std::string &)> link_listener_;
     std::map<NodeKey, Node> nodes_;
     std::map<NodeKey, DescriptionAssembly> assemblies_;
     std::function<void(const ReceivedFrame &)> listener_;
@@ -228,6 +286,7 @@ class Network
     std::function<void(const ReceivedFrame &)> collector_;
     Clock::time_point last_new_node_{};
     Clock::time_point last_list_nodes_{};
+    std::optional<Clock::time_point> first_answer_; // NODE_PRESENT since the last discover()
     uint64_t malformed_frames_ = 0;
 };
 

@@ -2,6 +2,9 @@
 
 #include "program.hpp"
 
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -40,9 +43,12 @@ const AeslNode &project_program_for(const ProgramFile &file,
 
 ProgramFile read_program_file(const std::string &path, const CommonDefinitions &script_definitions)
 {
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored))
+        throw FileError(path + ": is a folder, not a program file");
     std::ifstream stream(path, std::ios::binary);
     if (!stream)
-        throw ProgramError(path + ": cannot open the file");
+        throw FileError(path + ": cannot open the file (" + std::strerror(errno) + ")");
     std::ostringstream text;
     text << stream.rdbuf();
     ProgramFile file;
@@ -54,7 +60,7 @@ ProgramFile read_program_file(const std::string &path, const CommonDefinitions &
     }
     AeslReadResult read = read_aesl(text.str());
     if (!read.ok)
-        throw ProgramError(path + ":" + std::to_string(read.error_line) + ": " + read.error);
+        throw FileError(path + ":" + std::to_string(read.error_line) + ": " + read.error);
     file.is_project = true;
     file.project = std::move(read.project);
     file.definitions = file.project.definitions;

@@ -25,6 +25,13 @@ class ProgramError : public std::runtime_error
     using std::runtime_error::runtime_error;
 };
 
+// A program file that cannot be read, or a project that is not valid.
+class FileError : public ProgramError
+{
+  public:
+    using ProgramError::ProgramError;
+};
+
 // A program file as read: a bare script, or an .aesl project with one
 // program per node.
 struct ProgramFile {
@@ -37,6 +44,7 @@ struct ProgramFile {
 
 // Reads `path` (an .aesl project if its name ends in .aesl, else a script);
 // `script_definitions` declares global events and constants for scripts.
+// Throws FileError.
 ProgramFile read_program_file(const std::string &path,
                               const CommonDefinitions &script_definitions = {});
 

@@ -1,30 +1,19 @@
-// TCP and serial links, over POSIX sockets and termios.
+// Target strings, and TCP and serial links over asio (byte_stream.hpp).
 
 #include "transport.hpp"
 
 #include <cerrno>
-#include <cstring>
+#include <cstdlib>
 #include <fcntl.h>
-#include <netdb.h>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
-#include <poll.h>
-#include <sys/ioctl.h>
-#include <sys/socket.h>
-#include <termios.h>
-#include <unistd.h>
 #include <vector>
+
+#include "byte_stream.hpp"
 
 namespace aseba::client
 {
 
 namespace
 {
-
-std::string system_error(const std::string &what)
-{
-    return what + ": " + std::strerror(errno);
-}
 
 uint16_t parse_port(const std::string &text, const std::string &target)
 {
@@ -92,17 +81,18 @@ void parse_parameters(const std::string &text,
     }
 }
 
-class FileTransport : public Transport
+// A link opened and written through asio, read without waiting (the
+// caller polls fd()).
+class AsioTransport : public Transport
 {
   public:
-    FileTransport(int fd, std::string name)
-      : fd_(fd)
-      , name_(std::move(name))
+    AsioTransport(const TargetAddress &address, int timeout_ms)
+      : name_(target_text(address))
     {
-    }
-    ~FileTransport() override
-    {
-        close(fd_);
+        stream_.open(address, std::chrono::milliseconds(timeout_ms));
+        fd_ = stream_.native_handle();
+        // Reads are ::read on the descriptor: it must not block.
+        fcntl(fd_, F_SETFL, fcntl(fd_, F_GETFL) | O_NONBLOCK);
     }
     int fd() const override
     {
@@ -115,141 +105,28 @@ class FileTransport : public Transport
 
     size_t read(uint8_t *buffer, size_t capacity) override
     {
-        ssize_t count = ::read(fd_, buffer, capacity);
-        if (count > 0)
-            return size_t(count);
-        if (count == 0)
-            throw TransportError(name_ + ": the connection was closed");
-        if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR)
+        std::error_code error;
+        size_t count = stream_.read_some(asio::buffer(buffer, capacity), error);
+        if (error == asio::error::would_block)
             return 0;
-        throw TransportError(system_error(name_ + ": read failed"));
+        if (error == asio::error::eof)
+            throw TransportError(name_ + ": the connection was closed");
+        if (error)
+            throw TransportError(name_ + ": read failed: " + error.message());
+        return count;
     }
 
     void write(const uint8_t *bytes, size_t count, int timeout_ms) override
     {
-        size_t sent = 0;
-        while (sent < count) {
-            ssize_t written = send_or_write(fd_, bytes + sent, count - sent);
-            if (written > 0) {
-                sent += size_t(written);
-                continue;
-            }
-            if (written < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR)
-                throw TransportError(system_error(name_ + ": write failed"));
-            pollfd waiting{ fd_, POLLOUT, 0 };
-            if (poll(&waiting, 1, timeout_ms) <= 0)
-                throw TransportError(name_ + ": the link takes no data (timed out after " +
-                                     std::to_string(timeout_ms) + " ms)");
-        }
+        stream_.write_all(bytes, count, std::chrono::milliseconds(timeout_ms), name_);
     }
 
   private:
-    // Sockets get MSG_NOSIGNAL so that a closed peer is an error, not SIGPIPE.
-    static ssize_t send_or_write(int fd, const uint8_t *bytes, size_t count)
-    {
-        ssize_t written = ::send(fd, bytes, count, MSG_NOSIGNAL);
-        if (written < 0 && errno == ENOTSOCK)
-            written = ::write(fd, bytes, count);
-        return written;
-    }
-
-    int fd_;
+    asio::io_context io_;
+    detail::ByteStream stream_{ io_ };
     std::string name_;
+    int fd_ = -1;
 };
-
-std::unique_ptr<Transport> open_tcp(const TargetAddress &address, int timeout_ms)
-{
-    std::string name = target_text(address);
-    addrinfo hints{};
-    hints.ai_family = AF_UNSPEC;
-    hints.ai_socktype = SOCK_STREAM;
-    addrinfo *found = nullptr;
-    std::string port = std::to_string(address.port);
-    int status = getaddrinfo(address.host.c_str(), port.c_str(), &hints, &found);
-    if (status != 0)
-        throw TransportError(name + ": cannot resolve '" + address.host +
-                             "': " + gai_strerror(status));
-    std::string failure = "no address";
-    for (addrinfo *candidate = found; candidate != nullptr; candidate = candidate->ai_next) {
-        int fd = socket(candidate->ai_family,
-                        candidate->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC,
-                        candidate->ai_protocol);
-        if (fd < 0) {
-            failure = std::strerror(errno);
-            continue;
-        }
-        int connected = connect(fd, candidate->ai_addr, candidate->ai_addrlen);
-        if (connected != 0 && errno == EINPROGRESS) {
-            pollfd waiting{ fd, POLLOUT, 0 };
-            int ready = poll(&waiting, 1, timeout_ms);
-            int error = 0;
-            socklen_t length = sizeof error;
-            if (ready <= 0)
-                error = ETIMEDOUT;
-            else
-                getsockopt(fd, SOL_SOCKET, SO_ERROR, &error, &length);
-            connected = error == 0 ? 0 : -1;
-            errno = error;
-        }
-        if (connected == 0) {
-            freeaddrinfo(found);
-            int on = 1;
-            setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
-            return std::make_unique<FileTransport>(fd, name);
-        }
-        failure = std::strerror(errno);
-        close(fd);
-    }
-    freeaddrinfo(found);
-    throw TransportError(name + ": cannot connect: " + failure);
-}
-
-struct BaudRate {
-    unsigned rate;
-    speed_t code;
-};
-
-constexpr BaudRate baud_rates[] = {
-    { 9600, B9600 },     { 19200, B19200 },   { 38400, B38400 },   { 57600, B57600 },
-    { 115200, B115200 }, { 230400, B230400 }, { 460800, B460800 }, { 921600, B921600 },
-};
-
-std::unique_ptr<Transport> open_serial(const TargetAddress &address)
-{
-    std::string name = target_text(address);
-    speed_t speed = 0;
-    for (const BaudRate &entry : baud_rates)
-        if (entry.rate == address.baud)
-            speed = entry.code;
-    if (speed == 0)
-        throw TransportError(name + ": unsupported baud rate " + std::to_string(address.baud));
-    int fd = open(address.device.c_str(), O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    if (fd < 0)
-        throw TransportError(system_error(name + ": cannot open " + address.device));
-    // Raw 8N1 without flow control, like Dashel's defaults (protocol.md §8.2).
-    termios settings{};
-    if (tcgetattr(fd, &settings) != 0) {
-        std::string message = system_error(name + ": not a serial device");
-        close(fd);
-        throw TransportError(message);
-    }
-    cfmakeraw(&settings);
-    settings.c_cflag &= ~tcflag_t(CSTOPB | PARENB | CRTSCTS | CSIZE);
-    settings.c_cflag |= CS8 | CLOCAL | CREAD;
-    settings.c_cc[VMIN] = 0;
-    settings.c_cc[VTIME] = 0;
-    cfsetispeed(&settings, speed);
-    cfsetospeed(&settings, speed);
-    if (tcsetattr(fd, TCSANOW, &settings) != 0) {
-        std::string message = system_error(name + ": cannot configure the port");
-        close(fd);
-        throw TransportError(message);
-    }
-    int dtr = TIOCM_DTR;
-    ioctl(fd, TIOCMBIS, &dtr); // some adapters have no modem lines: not an error
-    tcflush(fd, TCIOFLUSH);
-    return std::make_unique<FileTransport>(fd, name);
-}
 
 } // namespace
 
@@ -293,9 +170,7 @@ std::string target_text(const TargetAddress &address)
 
 std::unique_ptr<Transport> open_transport(const TargetAddress &address, int timeout_ms)
 {
-    if (address.kind == TargetAddress::Kind::tcp)
-        return open_tcp(address, timeout_ms);
-    return open_serial(address);
+    return std::make_unique<AsioTransport>(address, timeout_ms);
 }
 
 } // namespace aseba::client

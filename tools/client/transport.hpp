@@ -41,8 +41,10 @@ TargetAddress parse_target(const std::string &text);
 // The canonical Dashel form of `address` (e.g. "tcp:localhost;33333").
 std::string target_text(const TargetAddress &address);
 
-// An open byte stream. Reads never block (the caller polls fd()); writes
-// send every byte or throw.
+// An open byte stream (a TCP socket or a serial port, over asio), for
+// callers that poll a file descriptor themselves; the Network has its own
+// links. Reads never block (the caller polls fd()); writes send every byte
+// or throw.
 class Transport
 {
   public:

@@ -1,13 +1,14 @@
-// A small XML reader, just enough for .aesl files: elements, attributes,
-// text, comments, CDATA, processing instructions, DOCTYPE and entities.
+// .aesl projects over pugixml: its parser does not recurse, so no nesting
+// depth can exhaust the stack, and it reports where a document is malformed.
 
 #include "aesl.hpp"
 
-#include <cstdlib>
-#include <map>
+#include <algorithm>
+#include <charconv>
+#include <sstream>
 #include <stdexcept>
 
-#include "lexer.hpp"
+#include <pugixml.hpp>
 
 namespace aseba
 {
@@ -19,9 +20,12 @@ constexpr long MAX_EVENT_WORDS = 258; // protocol.md §2
 constexpr long INT16_MIN_VALUE = -32768;
 constexpr long INT16_MAX_VALUE = 32767;
 constexpr long NODE_ID_MAX = 0xFFFF;
+// Entities and character references decoded, line ends normalised as XML
+// says, DOCTYPE and comments skipped: what Studio's Qt reader does.
+constexpr unsigned PARSE_OPTIONS = pugi::parse_default;
 
-struct XmlError : std::runtime_error {
-    XmlError(unsigned where, const std::string &message)
+struct AeslError : std::runtime_error {
+    AeslError(unsigned where, const std::string &message)
       : std::runtime_error(message)
       , line(where)
     {
@@ -29,322 +33,159 @@ struct XmlError : std::runtime_error {
     unsigned line;
 };
 
-class XmlReader
+// Line (from 1) and column (from 0) of byte `offset` of `text`.
+struct Position {
+    unsigned line = 1;
+    unsigned column = 0;
+};
+
+Position position_of(std::string_view text, ptrdiff_t offset)
+{
+    Position position;
+    size_t end = std::min(text.size(), size_t(std::max<ptrdiff_t>(offset, 0)));
+    for (size_t i = 0; i < end; ++i) {
+        if (text[i] == '\n') {
+            position.line++;
+            position.column = 0;
+        } else {
+            position.column++;
+        }
+    }
+    return position;
+}
+
+class ProjectReader
 {
   public:
-    explicit XmlReader(std::string_view document)
-      : text(document)
+    explicit ProjectReader(std::string_view text)
+      : text_(text)
     {
     }
 
     AeslProject read()
     {
+        pugi::xml_document document;
+        pugi::xml_parse_result parsed =
+          document.load_buffer(text_.data(), text_.size(), PARSE_OPTIONS, pugi::encoding_utf8);
+        if (!parsed)
+            throw AeslError(position_of(text_, parsed.offset).line,
+                            std::string("not well-formed XML: ") + parsed.description());
+        pugi::xml_node root = document.document_element();
+        if (!root || std::string_view(root.name()) != "network")
+            throw AeslError(root ? line_of(root) : 1, "the document element must be <network>");
+        for (pugi::xml_node other = root.next_sibling(); other; other = other.next_sibling())
+            if (other.type() == pugi::node_element)
+                throw AeslError(line_of(other), "only one document element is allowed");
         AeslProject project;
-        skip_prolog();
-        std::string root;
-        std::map<std::string, std::string> attributes;
-        bool empty = false;
-        if (!read_start_tag(root, attributes, empty) || root != "network")
-            throw XmlError(line, "the document element must be <network>");
-        if (empty)
-            return project;
-        while (true) {
-            skip_misc_text();
-            if (at_end())
-                throw XmlError(line, "missing </network>");
-            if (starts_with("</")) {
-                read_end_tag("network");
-                return project;
-            }
-            std::string name;
-            attributes.clear();
-            unsigned element_line = line;
-            if (!read_start_tag(name, attributes, empty))
-                throw XmlError(line, "expected an element");
+        for (pugi::xml_node element : root.children()) {
+            if (element.type() != pugi::node_element)
+                continue;
+            std::string_view name = element.name();
             if (name == "event")
-                project.definitions.events.push_back(event(attributes, element_line));
+                project.definitions.events.push_back(event(element));
             else if (name == "constant")
-                project.definitions.constants.push_back(constant(attributes, element_line));
+                project.definitions.constants.push_back(constant(element));
+            else if (name == "keywords")
+                project.show_keywords =
+                  std::string_view(element.attribute("flag").value()) != "false";
             else if (name == "node")
-                project.nodes.push_back(node(attributes, empty));
-            if (name != "node" && !empty)
-                skip_content(name);
+                project.nodes.push_back(node(element));
+            // Other elements are ignored, as by every reader (aesl.md §2).
         }
+        return project;
     }
 
   private:
-    std::string_view text;
-    size_t position = 0;
-    unsigned line = 1;
-
-    bool at_end() const
+    unsigned line_of(pugi::xml_node node) const
     {
-        return position >= text.size();
-    }
-    bool starts_with(std::string_view prefix) const
-    {
-        return text.substr(position, prefix.size()) == prefix;
-    }
-    void advance(size_t count = 1)
-    {
-        for (size_t i = 0; i < count && position < text.size(); ++i)
-            if (text[position++] == '\n')
-                ++line;
-    }
-    // Skips to just after `terminator`.
-    void skip_past(std::string_view terminator)
-    {
-        size_t found = text.find(terminator, position);
-        if (found == std::string_view::npos)
-            throw XmlError(line, "unterminated markup, missing " + std::string(terminator));
-        advance(found + terminator.size() - position);
-    }
-    void skip_spaces()
-    {
-        while (!at_end() && (text[position] == ' ' || text[position] == '\t' ||
-                             text[position] == '\n' || text[position] == '\r'))
-            advance();
-    }
-    // Whitespace, comments, processing instructions and stray text between elements.
-    void skip_misc_text()
-    {
-        while (!at_end()) {
-            if (starts_with("<!--"))
-                skip_past("-->");
-            else if (starts_with("<?"))
-                skip_past("?>");
-            else if (text[position] != '<')
-                advance();
-            else
-                return;
-        }
-    }
-    void skip_prolog()
-    {
-        while (!at_end()) {
-            skip_spaces();
-            if (starts_with("<?"))
-                skip_past("?>");
-            else if (starts_with("<!--"))
-                skip_past("-->");
-            else if (starts_with("<!DOCTYPE"))
-                skip_past(">");
-            else
-                return;
-        }
+        return position_of(text_, node.offset_debug()).line;
     }
 
-    static bool is_name_character(char c)
+    long number(pugi::xml_node element, const char *key, long low, long high) const
     {
-        return c != ' ' && c != '\t' && c != '\n' && c != '\r' && c != '/' && c != '>' &&
-               c != '=' && c != '<';
-    }
-
-    std::string read_name()
-    {
-        size_t start = position;
-        while (!at_end() && is_name_character(text[position]))
-            advance();
-        return std::string(text.substr(start, position - start));
-    }
-
-    bool read_start_tag(std::string &name,
-                        std::map<std::string, std::string> &attributes,
-                        bool &empty)
-    {
-        if (at_end() || text[position] != '<' || starts_with("</"))
-            return false;
-        advance();
-        name = read_name();
-        if (name.empty())
-            throw XmlError(line, "bad element name");
-        while (true) {
-            skip_spaces();
-            if (at_end())
-                throw XmlError(line, "unterminated tag <" + name + ">");
-            if (starts_with("/>")) {
-                advance(2);
-                empty = true;
-                return true;
-            }
-            if (text[position] == '>') {
-                advance();
-                empty = false;
-                return true;
-            }
-            std::string attribute = read_name();
-            skip_spaces();
-            if (attribute.empty() || at_end() || text[position] != '=')
-                throw XmlError(line, "bad attribute in <" + name + ">");
-            advance();
-            skip_spaces();
-            if (at_end() || (text[position] != '"' && text[position] != '\''))
-                throw XmlError(line, "attribute values must be quoted");
-            char quote = text[position];
-            advance();
-            size_t end = text.find(quote, position);
-            if (end == std::string_view::npos)
-                throw XmlError(line, "unterminated attribute value");
-            attributes[attribute] = decode_entities(text.substr(position, end - position));
-            advance(end + 1 - position);
-        }
-    }
-
-    void read_end_tag(const std::string &name)
-    {
-        advance(2);
-        std::string closing = read_name();
-        skip_spaces();
-        if (closing != name || at_end() || text[position] != '>')
-            throw XmlError(line, "expected </" + name + ">");
-        advance();
-    }
-
-    // Skips everything up to and including the end tag of `name`.
-    void skip_content(const std::string &name)
-    {
-        std::string ignored;
-        collect_content(name, ignored, false);
-    }
-
-    // Reads the content of element `name` up to its end tag; direct text
-    // children are appended to `collected` when `keep_text`.
-    void collect_content(const std::string &name, std::string &collected, bool keep_text)
-    {
-        while (true) {
-            if (at_end())
-                throw XmlError(line, "missing </" + name + ">");
-            if (starts_with("<!--")) {
-                skip_past("-->");
-            } else if (starts_with("<![CDATA[")) {
-                advance(9);
-                size_t end = text.find("]]>", position);
-                if (end == std::string_view::npos)
-                    throw XmlError(line, "unterminated CDATA section");
-                if (keep_text)
-                    collected += text.substr(position, end - position);
-                advance(end + 3 - position);
-            } else if (starts_with("<?")) {
-                skip_past("?>");
-            } else if (starts_with("</")) {
-                read_end_tag(name);
-                return;
-            } else if (text[position] == '<') {
-                std::string child;
-                std::map<std::string, std::string> attributes;
-                bool empty = false;
-                read_start_tag(child, attributes, empty);
-                if (!empty)
-                    skip_content(child);
-            } else {
-                size_t end = text.find('<', position);
-                if (end == std::string_view::npos)
-                    end = text.size();
-                if (keep_text)
-                    collected += decode_entities(text.substr(position, end - position));
-                advance(end - position);
-            }
-        }
-    }
-
-    std::string decode_entities(std::string_view raw) const
-    {
-        std::string result;
-        size_t i = 0;
-        while (i < raw.size()) {
-            if (raw[i] != '&') {
-                result += raw[i++];
-                continue;
-            }
-            size_t end = raw.find(';', i);
-            if (end == std::string_view::npos)
-                throw XmlError(line, "unterminated entity");
-            std::string entity(raw.substr(i + 1, end - i - 1));
-            if (entity == "lt")
-                result += '<';
-            else if (entity == "gt")
-                result += '>';
-            else if (entity == "amp")
-                result += '&';
-            else if (entity == "quot")
-                result += '"';
-            else if (entity == "apos")
-                result += '\'';
-            else if (entity.size() > 1 && entity[0] == '#') {
-                bool hex = entity[1] == 'x';
-                char *stop = nullptr;
-                unsigned long code =
-                  std::strtoul(entity.c_str() + (hex ? 2 : 1), &stop, hex ? 16 : 10);
-                if (*stop != '\0' || code == 0 || code > 0x10FFFF)
-                    throw XmlError(line, "bad character reference &" + entity + ";");
-                result += encode_utf8(std::u32string(1, static_cast<char32_t>(code)));
-            } else {
-                throw XmlError(line, "unknown entity &" + entity + ";");
-            }
-            i = end + 1;
-        }
-        return result;
-    }
-
-    static long number(const std::map<std::string, std::string> &attributes,
-                       const char *key,
-                       long low,
-                       long high,
-                       unsigned where,
-                       const char *element)
-    {
-        auto found = attributes.find(key);
-        if (found == attributes.end())
-            throw XmlError(where, std::string("<") + element + "> needs a " + key + " attribute");
-        char *stop = nullptr;
-        long value = std::strtol(found->second.c_str(), &stop, 10);
-        if (found->second.empty() || *stop != '\0' || value < low || value > high)
-            throw XmlError(where,
-                           std::string("<") + element + "> " + key + " must be a number in [" +
-                             std::to_string(low) + ", " + std::to_string(high) + "]");
+        pugi::xml_attribute attribute = element.attribute(key);
+        std::string where = std::string("<") + element.name() + "> ";
+        if (!attribute)
+            throw AeslError(line_of(element), where + "needs a " + key + " attribute");
+        std::string_view text = attribute.value();
+        long value = 0;
+        auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || error != std::errc() || end != text.data() + text.size() ||
+            value < low || value > high)
+            throw AeslError(line_of(element),
+                            where + key + " must be a number in [" + std::to_string(low) + ", " +
+                              std::to_string(high) + "], not '" + std::string(text) + "'");
         return value;
     }
 
-    static std::string name_of(const std::map<std::string, std::string> &attributes,
-                               unsigned where,
-                               const char *element)
+    std::string name_of(pugi::xml_node element) const
     {
-        auto found = attributes.find("name");
-        if (found == attributes.end() || found->second.empty())
-            throw XmlError(where, std::string("<") + element + "> needs a name attribute");
-        return found->second;
+        std::string name = element.attribute("name").value();
+        if (name.empty())
+            throw AeslError(line_of(element),
+                            std::string("<") + element.name() + "> needs a name attribute");
+        return name;
     }
 
-    static GlobalEvent event(const std::map<std::string, std::string> &attributes, unsigned where)
+    GlobalEvent event(pugi::xml_node element) const
     {
-        return { name_of(attributes, where, "event"),
-                 static_cast<uint16_t>(
-                   number(attributes, "size", 0, MAX_EVENT_WORDS, where, "event")) };
+        return { name_of(element),
+                 static_cast<uint16_t>(number(element, "size", 0, MAX_EVENT_WORDS)) };
     }
 
-    static Constant constant(const std::map<std::string, std::string> &attributes, unsigned where)
+    Constant constant(pugi::xml_node element) const
     {
-        return { name_of(attributes, where, "constant"),
-                 static_cast<int16_t>(number(
-                   attributes, "value", INT16_MIN_VALUE, INT16_MAX_VALUE, where, "constant")) };
+        return { name_of(element),
+                 static_cast<int16_t>(number(element, "value", INT16_MIN_VALUE, INT16_MAX_VALUE)) };
     }
 
-    AeslNode node(const std::map<std::string, std::string> &attributes, bool empty)
+    AeslNode node(pugi::xml_node element) const
     {
         AeslNode result;
-        result.name = name_of(attributes, line, "node");
-        if (attributes.count("nodeId"))
-            result.node_id =
-              static_cast<uint16_t>(number(attributes, "nodeId", 0, NODE_ID_MAX, line, "node"));
-        result.first_line = line;
-        size_t line_start = text.rfind('\n', position == 0 ? 0 : position - 1);
-        result.first_column = static_cast<unsigned>(
-          line_start == std::string_view::npos ? position : position - line_start - 1);
-        if (!empty)
-            collect_content("node", result.source, true);
+        result.name = name_of(element);
+        if (element.attribute("nodeId"))
+            result.node_id = static_cast<uint16_t>(number(element, "nodeId", 0, NODE_ID_MAX));
+        // The program is the node's direct text (Studio joins every piece);
+        // the position is where its first piece starts in the file.
+        bool positioned = false;
+        for (pugi::xml_node child : element.children()) {
+            if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
+                if (!positioned) {
+                    Position start = position_of(text_, child.offset_debug());
+                    result.first_line = start.line;
+                    result.first_column = start.column;
+                    positioned = true;
+                }
+                result.source += child.value();
+            } else if (child.type() == pugi::node_element &&
+                       std::string_view(child.name()) == "toolsPlugins") {
+                std::ostringstream plugins;
+                child.print(plugins, "", pugi::format_raw);
+                result.tools_plugins = plugins.str();
+            }
+        }
+        if (!positioned)
+            result.first_line = line_of(element);
         return result;
     }
+
+    std::string_view text_;
 };
+
+// Every element on a line of its own, two blank lines and a comment before
+// each group, as Studio lays files out.
+void open_group(pugi::xml_node network, const std::string &comment)
+{
+    network.append_child(pugi::node_pcdata).set_value("\n\n");
+    network.append_child(pugi::node_comment).set_value(comment.c_str());
+    network.append_child(pugi::node_pcdata).set_value("\n");
+}
+
+void require_name(const std::string &name, const char *what)
+{
+    if (name.empty())
+        throw std::invalid_argument(std::string("an .aesl ") + what + " needs a name");
+}
 
 } // namespace
 
@@ -352,13 +193,73 @@ AeslReadResult read_aesl(std::string_view text)
 {
     AeslReadResult result;
     try {
-        result.project = XmlReader(text).read();
+        result.project = ProjectReader(text).read();
         result.ok = true;
-    } catch (const XmlError &error) {
+    } catch (const AeslError &error) {
         result.error_line = error.line;
         result.error = error.what();
     }
     return result;
+}
+
+std::string write_aesl(const AeslProject &project)
+{
+    pugi::xml_document document;
+    document.append_child(pugi::node_doctype).set_value("aesl-source");
+    document.append_child(pugi::node_pcdata).set_value("\n");
+    pugi::xml_node network = document.append_child("network");
+    network.append_child(pugi::node_pcdata).set_value("\n");
+
+    open_group(network, "list of global events");
+    for (const GlobalEvent &event : project.definitions.events) {
+        require_name(event.name, "event");
+        if (event.size > MAX_EVENT_WORDS)
+            throw std::invalid_argument("event " + event.name + " has " +
+                                        std::to_string(event.size) + " words of arguments, " +
+                                        "more than the protocol's " +
+                                        std::to_string(MAX_EVENT_WORDS));
+        pugi::xml_node element = network.append_child("event");
+        element.append_attribute("size").set_value(unsigned(event.size));
+        element.append_attribute("name").set_value(event.name.c_str());
+        network.append_child(pugi::node_pcdata).set_value("\n");
+    }
+    open_group(network, "list of constants");
+    for (const Constant &constant : project.definitions.constants) {
+        require_name(constant.name, "constant");
+        pugi::xml_node element = network.append_child("constant");
+        element.append_attribute("value").set_value(int(constant.value));
+        element.append_attribute("name").set_value(constant.name.c_str());
+        network.append_child(pugi::node_pcdata).set_value("\n");
+    }
+    open_group(network, "show keywords state");
+    network.append_child("keywords").append_attribute("flag").set_value(project.show_keywords);
+    network.append_child(pugi::node_pcdata).set_value("\n");
+
+    for (const AeslNode &node : project.nodes) {
+        require_name(node.name, "node");
+        open_group(network, "node " + node.name);
+        pugi::xml_node element = network.append_child("node");
+        element.append_attribute("nodeId").set_value(unsigned(node.node_id));
+        element.append_attribute("name").set_value(node.name.c_str());
+        // One text child, first (asebamassloader reads only the first child).
+        if (!node.source.empty())
+            element.append_child(pugi::node_pcdata).set_value(node.source.c_str());
+        if (!node.tools_plugins.empty()) {
+            pugi::xml_document plugins;
+            if (!plugins.load_buffer(node.tools_plugins.data(), node.tools_plugins.size()) ||
+                std::string_view(plugins.document_element().name()) != "toolsPlugins")
+                throw std::invalid_argument("the plugin state of node " + node.name +
+                                            " is not a <toolsPlugins> element");
+            element.append_copy(plugins.document_element());
+        }
+        network.append_child(pugi::node_pcdata).set_value("\n");
+    }
+    network.append_child(pugi::node_pcdata).set_value("\n\n");
+    document.append_child(pugi::node_pcdata).set_value("\n");
+
+    std::ostringstream out;
+    document.save(out, "", pugi::format_raw | pugi::format_no_declaration, pugi::encoding_utf8);
+    return out.str();
 }
 
 } // namespace aseba

@@ -18,5 +18,8 @@ aseba_compiler_SOURCES := \
     tools/compiler/disassembler.cpp \
     tools/compiler/error_format.cpp \
     tools/compiler/program_file.cpp
+# .aesl projects are read and written by pugixml (Debian libpugixml-dev),
+# target descriptions by nlohmann-json (header only).
+aseba_compiler_LDLIBS := -lpugixml
 # The e-puck preset lists the firmware's own native table, so both agree.
 aseba_compiler_SOURCES += firmware/epuck_natives.c

@@ -1,16 +1,15 @@
-// A minimal JSON reader (objects, arrays, strings, integers, booleans, null)
-// and the mapping of docs/target-description.md onto TargetDescription.
+// Target descriptions in JSON (docs/target-description.md) over
+// nlohmann-json: its parser is iterative, so no nesting can exhaust the
+// stack; here, only the mapping onto TargetDescription and its checks.
 
 #include "target_json.hpp"
 
-#include <cstdio>
-#include <map>
 #include <optional>
-#include <memory>
+#include <set>
 #include <stdexcept>
-#include <vector>
 
-#include "lexer.hpp"
+#include <nlohmann/json.hpp>
+
 #include "target_presets.hpp"
 
 namespace aseba
@@ -19,345 +18,220 @@ namespace aseba
 namespace
 {
 
-constexpr unsigned MAX_JSON_DEPTH = 64;
+using Json = nlohmann::json;
+
+constexpr int MAX_JSON_DEPTH = 64; // a description nests 4 levels deep
 constexpr long long WORD_LIMIT = 0xFFFF;
 constexpr long long PARAMETER_SIZE_MIN = -32768;
 constexpr long long PARAMETER_SIZE_MAX = 32767;
 
-struct JsonError : std::runtime_error {
-    JsonError(unsigned where, const std::string &message)
-      : std::runtime_error("line " + std::to_string(where) + ": " + message)
+// A value that is not what the format says, named by its path in the file
+// (`natives[3].parameters[0].size`).
+struct DescriptionError : std::runtime_error {
+    DescriptionError(const std::string &path, const std::string &message)
+      : std::runtime_error(path.empty() ? message : path + ": " + message)
     {
     }
 };
 
-struct JsonMember;
-
-struct JsonValue {
-    enum class Kind { Null, Boolean, Number, String, Array, Object } kind = Kind::Null;
-    bool boolean = false;
-    long long number = 0;
-    std::string string;
-    std::vector<JsonValue> array;
-    // A vector may hold a type still incomplete here; a std::pair may not.
-    std::vector<JsonMember> object; // in file order
-    unsigned line = 0;
-
-    const JsonValue *member(const std::string &key) const;
-};
-
-struct JsonMember {
-    std::string name;
-    JsonValue value;
-};
-
-const JsonValue *JsonValue::member(const std::string &key) const
+std::string member_path(const std::string &object, const std::string &key)
 {
-    for (const auto &[name, value] : object)
-        if (name == key)
-            return &value;
-    return nullptr;
+    return object.empty() ? key : object + "." + key;
 }
 
-class JsonParser
+std::string item_path(const std::string &array, size_t index)
 {
-  public:
-    explicit JsonParser(std::string_view document)
-      : text(document)
-    {
-    }
-
-    JsonValue parse()
-    {
-        JsonValue value = parse_value(0);
-        skip_spaces();
-        if (position != text.size())
-            throw JsonError(line, "unexpected text after the JSON value");
-        return value;
-    }
-
-  private:
-    std::string_view text;
-    size_t position = 0;
-    unsigned line = 1;
-
-    void skip_spaces()
-    {
-        while (position < text.size() && (text[position] == ' ' || text[position] == '\t' ||
-                                          text[position] == '\n' || text[position] == '\r')) {
-            if (text[position] == '\n')
-                ++line;
-            ++position;
-        }
-    }
-
-    char peek()
-    {
-        skip_spaces();
-        if (position >= text.size())
-            throw JsonError(line, "unexpected end of the file");
-        return text[position];
-    }
-
-    void expect(char c)
-    {
-        if (peek() != c)
-            throw JsonError(line, std::string("expected '") + c + "'");
-        ++position;
-    }
-
-    bool take_word(std::string_view word)
-    {
-        if (text.substr(position, word.size()) != word)
-            return false;
-        position += word.size();
-        return true;
-    }
-
-    JsonValue parse_value(unsigned depth)
-    {
-        if (depth > MAX_JSON_DEPTH)
-            throw JsonError(line, "nested too deeply");
-        JsonValue value;
-        char c = peek();
-        value.line = line;
-        if (c == '{') {
-            value.kind = JsonValue::Kind::Object;
-            ++position;
-            if (peek() == '}') {
-                ++position;
-                return value;
-            }
-            while (true) {
-                if (peek() != '"')
-                    throw JsonError(line, "expected a member name in quotes");
-                std::string key = parse_string();
-                expect(':');
-                value.object.push_back({ key, parse_value(depth + 1) });
-                if (peek() == ',') {
-                    ++position;
-                    continue;
-                }
-                expect('}');
-                return value;
-            }
-        }
-        if (c == '[') {
-            value.kind = JsonValue::Kind::Array;
-            ++position;
-            if (peek() == ']') {
-                ++position;
-                return value;
-            }
-            while (true) {
-                value.array.push_back(parse_value(depth + 1));
-                if (peek() == ',') {
-                    ++position;
-                    continue;
-                }
-                expect(']');
-                return value;
-            }
-        }
-        if (c == '"') {
-            value.kind = JsonValue::Kind::String;
-            value.string = parse_string();
-            return value;
-        }
-        if (c == '-' || (c >= '0' && c <= '9')) {
-            value.kind = JsonValue::Kind::Number;
-            bool negative = c == '-';
-            if (negative)
-                ++position;
-            size_t start = position;
-            long long number = 0;
-            while (position < text.size() && text[position] >= '0' && text[position] <= '9') {
-                number = number * 10 + (text[position] - '0');
-                if (number > (1LL << 40))
-                    throw JsonError(line, "number too large");
-                ++position;
-            }
-            if (position == start)
-                throw JsonError(line, "bad number");
-            if (position < text.size() &&
-                (text[position] == '.' || text[position] == 'e' || text[position] == 'E'))
-                throw JsonError(line, "only integers are allowed");
-            value.number = negative ? -number : number;
-            return value;
-        }
-        if (take_word("true")) {
-            value.kind = JsonValue::Kind::Boolean;
-            value.boolean = true;
-            return value;
-        }
-        if (take_word("false")) {
-            value.kind = JsonValue::Kind::Boolean;
-            return value;
-        }
-        if (take_word("null"))
-            return value;
-        throw JsonError(line, "expected a JSON value");
-    }
-
-    std::string parse_string()
-    {
-        ++position; // opening quote
-        std::string result;
-        while (true) {
-            if (position >= text.size() || text[position] == '\n')
-                throw JsonError(line, "unterminated string");
-            char c = text[position++];
-            if (c == '"')
-                return result;
-            if (c != '\\') {
-                result += c;
-                continue;
-            }
-            if (position >= text.size())
-                throw JsonError(line, "unterminated string");
-            char escaped = text[position++];
-            switch (escaped) {
-            case '"': result += '"'; break;
-            case '\\': result += '\\'; break;
-            case '/': result += '/'; break;
-            case 'b': result += '\b'; break;
-            case 'f': result += '\f'; break;
-            case 'n': result += '\n'; break;
-            case 'r': result += '\r'; break;
-            case 't': result += '\t'; break;
-            case 'u': {
-                if (position + 4 > text.size())
-                    throw JsonError(line, "bad \\u escape");
-                unsigned long code = std::stoul(std::string(text.substr(position, 4)), nullptr, 16);
-                position += 4;
-                result += encode_utf8(std::u32string(1, static_cast<char32_t>(code)));
-                break;
-            }
-            default: throw JsonError(line, "bad escape in string");
-            }
-        }
-    }
-};
-
-const JsonValue &required(const JsonValue &object, const std::string &key, JsonValue::Kind kind)
-{
-    const JsonValue *value = object.member(key);
-    if (value == nullptr)
-        throw JsonError(object.line, "missing \"" + key + "\"");
-    if (value->kind != kind)
-        throw JsonError(value->line, "\"" + key + "\" has the wrong type");
-    return *value;
+    return array + "[" + std::to_string(index) + "]";
 }
 
-long long integer(const JsonValue &object,
+const Json &object_at(const Json &value, const std::string &path)
+{
+    if (!value.is_object())
+        throw DescriptionError(path, "expected an object");
+    return value;
+}
+
+const Json *member(const Json &object, const std::string &key)
+{
+    auto found = object.find(key);
+    return found == object.end() ? nullptr : &*found;
+}
+
+long long integer(const Json &object,
+                  const std::string &path,
                   const std::string &key,
                   long long low,
                   long long high,
                   std::optional<long long> fallback = std::nullopt)
 {
-    if (fallback && object.member(key) == nullptr)
-        return *fallback;
-    const JsonValue &value = required(object, key, JsonValue::Kind::Number);
-    if (value.number < low || value.number > high)
-        throw JsonError(value.line,
-                        "\"" + key + "\" must be in [" + std::to_string(low) + ", " +
-                          std::to_string(high) + "]");
-    return value.number;
+    const Json *value = member(object, key);
+    std::string where = member_path(path, key);
+    if (value == nullptr) {
+        if (fallback)
+            return *fallback;
+        throw DescriptionError(where, "missing");
+    }
+    // Unsigned numbers above the signed range are out of range anyway.
+    if (!value->is_number_integer())
+        throw DescriptionError(where, "must be an integer");
+    long long number = value->is_number_unsigned() && value->get<unsigned long long>() > WORD_LIMIT
+                         ? high + 1
+                         : value->get<long long>();
+    if (number < low || number > high)
+        throw DescriptionError(where,
+                               "must be in [" + std::to_string(low) + ", " + std::to_string(high) +
+                                 "], not " + value->dump());
+    return number;
 }
 
-std::string text_member(const JsonValue &object, const std::string &key, bool optional = false)
+std::string text(const Json &object,
+                 const std::string &path,
+                 const std::string &key,
+                 bool optional = false)
 {
-    if (optional && object.member(key) == nullptr)
-        return "";
-    return required(object, key, JsonValue::Kind::String).string;
+    const Json *value = member(object, key);
+    std::string where = member_path(path, key);
+    if (value == nullptr) {
+        if (optional)
+            return "";
+        throw DescriptionError(where, "missing");
+    }
+    if (!value->is_string())
+        throw DescriptionError(where, "must be a string");
+    return value->get<std::string>();
 }
 
-const std::vector<JsonValue> &array_member(const JsonValue &object, const std::string &key)
+std::string name_member(const Json &object, const std::string &path)
 {
-    static const std::vector<JsonValue> none;
-    if (object.member(key) == nullptr)
+    std::string name = text(object, path, "name");
+    if (name.empty())
+        throw DescriptionError(member_path(path, "name"), "must not be empty");
+    return name;
+}
+
+// The items of an optional array member (none when absent).
+const Json &array_member(const Json &object, const std::string &path, const std::string &key)
+{
+    static const Json none = Json::array();
+    const Json *value = member(object, key);
+    if (value == nullptr)
         return none;
-    return required(object, key, JsonValue::Kind::Array).array;
+    if (!value->is_array())
+        throw DescriptionError(member_path(path, key), "must be an array");
+    return *value;
 }
 
-void expect_object(const JsonValue &value)
+// Names the compiler looks up must be unique within their kind.
+template<typename Item>
+void check_unique(const std::vector<Item> &items, const std::string &array)
 {
-    if (value.kind != JsonValue::Kind::Object)
-        throw JsonError(value.line, "expected an object");
+    std::set<std::string> seen;
+    for (size_t i = 0; i < items.size(); i++)
+        if (!seen.insert(items[i].name).second)
+            throw DescriptionError(item_path(array, i),
+                                   "the name " + items[i].name + " is used twice");
 }
 
-TargetDescription target_from(const JsonValue &root)
+NativeFunction native_from(const Json &value, const std::string &path)
 {
-    expect_object(root);
+    object_at(value, path);
+    NativeFunction function;
+    function.name = name_member(value, path);
+    function.description = text(value, path, "description", true);
+    const std::string parameters_path = member_path(path, "parameters");
+    const Json &parameters = array_member(value, path, "parameters");
+    for (size_t i = 0; i < parameters.size(); i++) {
+        std::string where = item_path(parameters_path, i);
+        object_at(parameters[i], where);
+        function.parameters.push_back(
+          { name_member(parameters[i], where),
+            static_cast<int16_t>(
+              integer(parameters[i], where, "size", PARAMETER_SIZE_MIN, PARAMETER_SIZE_MAX)) });
+    }
+    return function;
+}
+
+TargetDescription target_from(const Json &root)
+{
+    object_at(root, "");
     TargetDescription target;
-    target.name = text_member(root, "name");
+    target.name = name_member(root, "");
     target.protocol_version =
-      static_cast<uint16_t>(integer(root, "protocol_version", 0, WORD_LIMIT, 5));
-    target.bytecode_size = static_cast<uint16_t>(integer(root, "bytecode_size", 1, WORD_LIMIT));
-    target.variables_size = static_cast<uint16_t>(integer(root, "variables_size", 0, WORD_LIMIT));
-    target.stack_size = static_cast<uint16_t>(integer(root, "stack_size", 1, WORD_LIMIT));
-    for (const auto &variable : array_member(root, "variables")) {
-        expect_object(variable);
-        target.named_variables.push_back(
-          { text_member(variable, "name"),
-            static_cast<uint16_t>(integer(variable, "size", 1, WORD_LIMIT, 1)) });
+      static_cast<uint16_t>(integer(root, "", "protocol_version", 0, WORD_LIMIT, 5));
+    target.bytecode_size = static_cast<uint16_t>(integer(root, "", "bytecode_size", 1, WORD_LIMIT));
+    target.variables_size =
+      static_cast<uint16_t>(integer(root, "", "variables_size", 0, WORD_LIMIT));
+    target.stack_size = static_cast<uint16_t>(integer(root, "", "stack_size", 1, WORD_LIMIT));
+
+    const Json &variables = array_member(root, "", "variables");
+    long long named_words = 0;
+    for (size_t i = 0; i < variables.size(); i++) {
+        std::string where = item_path("variables", i);
+        object_at(variables[i], where);
+        NamedVariable variable{ name_member(variables[i], where),
+                                static_cast<uint16_t>(
+                                  integer(variables[i], where, "size", 1, WORD_LIMIT, 1)) };
+        named_words += variable.size;
+        target.named_variables.push_back(variable);
     }
-    for (const auto &event : array_member(root, "local_events")) {
-        expect_object(event);
+    if (named_words > target.variables_size)
+        throw DescriptionError("variables",
+                               "the named variables take " + std::to_string(named_words) +
+                                 " words, more than variables_size (" +
+                                 std::to_string(target.variables_size) + ")");
+    check_unique(target.named_variables, "variables");
+
+    const Json &events = array_member(root, "", "local_events");
+    for (size_t i = 0; i < events.size(); i++) {
+        std::string where = item_path("local_events", i);
+        object_at(events[i], where);
         target.local_events.push_back(
-          { text_member(event, "name"), text_member(event, "description", true) });
+          { name_member(events[i], where), text(events[i], where, "description", true) });
     }
-    for (const auto &native : array_member(root, "natives")) {
-        if (native.kind == JsonValue::Kind::String && native.string == "standard") {
-            for (auto &function : standard_native_functions())
+    check_unique(target.local_events, "local_events");
+
+    const Json &natives = array_member(root, "", "natives");
+    for (size_t i = 0; i < natives.size(); i++) {
+        if (natives[i].is_string() && natives[i].get<std::string>() == "standard") {
+            for (const NativeFunction &function : standard_native_functions())
                 target.native_functions.push_back(function);
             continue;
         }
-        expect_object(native);
-        NativeFunction function;
-        function.name = text_member(native, "name");
-        function.description = text_member(native, "description", true);
-        for (const auto &parameter : array_member(native, "parameters")) {
-            expect_object(parameter);
-            function.parameters.push_back(
-              { text_member(parameter, "name"),
-                static_cast<int16_t>(
-                  integer(parameter, "size", PARAMETER_SIZE_MIN, PARAMETER_SIZE_MAX)) });
-        }
-        target.native_functions.push_back(function);
+        target.native_functions.push_back(native_from(natives[i], item_path("natives", i)));
     }
+    check_unique(target.native_functions, "natives");
     return target;
 }
 
-std::string quoted(const std::string &text)
+// nlohmann's message without its "[json.exception.KIND.ID] " prefix: "parse
+// error at line L, column C: ...", "number overflow parsing '1e999'".
+std::string json_error_text(const nlohmann::json::exception &error)
 {
-    std::string result = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') {
-            result += '\\';
-            result += c;
-        } else if (c == '\n') {
-            result += "\\n";
-        } else if (static_cast<unsigned char>(c) < 0x20) {
-            char escape[8];
-            std::snprintf(escape, sizeof escape, "\\u%04x", c);
-            result += escape;
-        } else {
-            result += c;
-        }
-    }
-    return result + "\"";
+    std::string message = error.what();
+    size_t end_of_prefix = message.find("] ");
+    return end_of_prefix == std::string::npos ? message : message.substr(end_of_prefix + 2);
 }
 
 } // namespace
 
-TargetReadResult read_target_json(std::string_view text)
+TargetReadResult read_target_json(std::string_view text_of_file)
 {
     TargetReadResult result;
+    // Refuses absurd nesting while parsing, before any value is built.
+    Json::parser_callback_t limit_depth = [](int depth, Json::parse_event_t, Json &) {
+        if (depth > MAX_JSON_DEPTH)
+            throw DescriptionError(
+              "", "nested more than " + std::to_string(MAX_JSON_DEPTH) + " levels deep");
+        return true;
+    };
     try {
-        result.target = target_from(JsonParser(text).parse());
+        Json root = Json::parse(text_of_file.begin(), text_of_file.end(), limit_depth);
+        result.target = target_from(root);
         result.ok = true;
-    } catch (const std::exception &error) {
+    } catch (const nlohmann::json::exception &error) {
+        // Bad syntax, or a number out of every integer's range.
+        result.error = json_error_text(error);
+    } catch (const DescriptionError &error) {
         result.error = error.what();
     }
     return result;
@@ -365,34 +239,32 @@ TargetReadResult read_target_json(std::string_view text)
 
 std::string write_target_json(const TargetDescription &target)
 {
-    std::string out = "{\n";
-    out += "  \"name\": " + quoted(target.name) + ",\n";
-    out += "  \"protocol_version\": " + std::to_string(target.protocol_version) + ",\n";
-    out += "  \"bytecode_size\": " + std::to_string(target.bytecode_size) + ",\n";
-    out += "  \"variables_size\": " + std::to_string(target.variables_size) + ",\n";
-    out += "  \"stack_size\": " + std::to_string(target.stack_size) + ",\n";
-    out += "  \"variables\": [";
-    for (size_t i = 0; i < target.named_variables.size(); ++i)
-        out += std::string(i ? ",\n    " : "\n    ") +
-               "{\"name\": " + quoted(target.named_variables[i].name) +
-               ", \"size\": " + std::to_string(target.named_variables[i].size) + "}";
-    out += "\n  ],\n  \"local_events\": [";
-    for (size_t i = 0; i < target.local_events.size(); ++i)
-        out += std::string(i ? ",\n    " : "\n    ") +
-               "{\"name\": " + quoted(target.local_events[i].name) +
-               ", \"description\": " + quoted(target.local_events[i].description) + "}";
-    out += "\n  ],\n  \"natives\": [";
-    for (size_t i = 0; i < target.native_functions.size(); ++i) {
-        const NativeFunction &native = target.native_functions[i];
-        out += std::string(i ? ",\n    " : "\n    ") + "{\"name\": " + quoted(native.name) +
-               ", \"description\": " + quoted(native.description) + ", \"parameters\": [";
-        for (size_t p = 0; p < native.parameters.size(); ++p)
-            out += std::string(p ? ", " : "") + "{\"name\": " + quoted(native.parameters[p].name) +
-                   ", \"size\": " + std::to_string(native.parameters[p].size) + "}";
-        out += "]}";
+    // In the format's order, which people read in.
+    using OrderedJson = nlohmann::ordered_json;
+    OrderedJson root;
+    root["name"] = target.name;
+    root["protocol_version"] = target.protocol_version;
+    root["bytecode_size"] = target.bytecode_size;
+    root["variables_size"] = target.variables_size;
+    root["stack_size"] = target.stack_size;
+    root["variables"] = OrderedJson::array();
+    for (const NamedVariable &variable : target.named_variables)
+        root["variables"].push_back({ { "name", variable.name }, { "size", variable.size } });
+    root["local_events"] = OrderedJson::array();
+    for (const LocalEvent &event : target.local_events)
+        root["local_events"].push_back(
+          { { "name", event.name }, { "description", event.description } });
+    root["natives"] = OrderedJson::array();
+    for (const NativeFunction &native : target.native_functions) {
+        OrderedJson parameters = OrderedJson::array();
+        for (const NativeParameter &parameter : native.parameters)
+            parameters.push_back({ { "name", parameter.name }, { "size", parameter.size } });
+        root["natives"].push_back({ { "name", native.name },
+                                    { "description", native.description },
+                                    { "parameters", parameters } });
     }
-    out += "\n  ]\n}\n";
-    return out;
+    // Names from a node may not be UTF-8: such bytes are replaced, not fatal.
+    return root.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
 } // namespace aseba

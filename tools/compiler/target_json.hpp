@@ -14,7 +14,10 @@ namespace aseba
 struct TargetReadResult {
     bool ok = false;
     TargetDescription target;
-    std::string error; // "line N: what is wrong" when !ok
+    // When !ok: "parse error at line L, column C: ..." for bad JSON, "PATH:
+    // ..." for a value
+    // the format does not allow (PATH as `natives[3].parameters[0].size`).
+    std::string error;
 };
 
 // Reads a target description from JSON text; never throws.

@@ -25,19 +25,19 @@ constexpr int PROGRESS_BAR_WIDTH = 30;
 constexpr Milliseconds PROGRESS_REDRAW{ 100 };
 constexpr Milliseconds NO_REBOOT_ENTER_TIMEOUT{ 10000 };
 
-// The pages of a Microchip HEX application image, checked to hold the
-// descriptor without which the bootloader would never start it.
-std::vector<client::FlashPage> read_image(const std::string &path)
+} // namespace
+
+std::vector<client::FlashPage> read_flash_image(const std::string &path)
 {
-    flash::ProgramImage image = flash::read_microchip_hex_file(path, BOOT_APPLICATION_END);
-    auto magic = image.instructions.find(BOOT_DESCRIPTOR_ADDRESS);
-    if (magic == image.instructions.end() || magic->second != BOOT_DESCRIPTOR_MAGIC) {
-        std::ostringstream message;
-        message << path << ": no application descriptor at PC 0x" << std::hex << std::uppercase
-                << BOOT_DESCRIPTOR_ADDRESS
-                << ", so the bootloader would never start this image (flash the application "
-                   "image that `make dspic30` writes, which has one)";
-        throw std::runtime_error(message.str());
+    flash::ProgramImage image;
+    try {
+        image = flash::read_microchip_hex_file(path, BOOT_APPLICATION_END);
+        flash::check_application_image(image);
+    } catch (const flash::HexError &error) {
+        std::string message = error.what();
+        if (message.rfind(path, 0) != 0)
+            message = path + ": " + message;
+        throw InputError(message + "; no robot was touched");
     }
     std::vector<client::FlashPage> pages;
     for (const flash::Page &page : flash::make_pages(image))
@@ -45,6 +45,9 @@ std::vector<client::FlashPage> read_image(const std::string &path)
           { page.number, std::vector<uint8_t>(page.bytes.begin(), page.bytes.end()) });
     return pages;
 }
+
+namespace
+{
 
 bool is_node_id(const std::string &selector)
 {
@@ -145,9 +148,7 @@ class ProgressBar
 int command_flash(Session &session)
 {
     const Options &options = session.options();
-    if (options.arguments.size() != 1)
-        throw UsageError("flash takes one IMAGE.hex");
-    std::vector<client::FlashPage> pages = read_image(options.arguments[0]);
+    std::vector<client::FlashPage> pages = read_flash_image(options.arguments[0]);
     std::vector<std::string> silent;
     std::vector<NodeKey> nodes = flash_targets(session, silent);
     for (const std::string &id : silent)

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/client/flasher.hpp"
 #include "tools/client/network.hpp"
 
 namespace aseba::console
@@ -24,6 +25,15 @@ class UsageError : public std::runtime_error
     using std::runtime_error::runtime_error;
 };
 
+// An input file that cannot be read or used (a program, an image): exit
+// status 2, as for bad usage, without the hint.
+class InputError : public std::runtime_error
+{
+  public:
+    using std::runtime_error::runtime_error;
+};
+
+// The exit statuses of every program (tools/command_line/command_line.hpp).
 constexpr int EXIT_FAILED = 1;
 constexpr int EXIT_USAGE = 2;
 
@@ -106,6 +116,12 @@ int command_monitor(Session &session);
 int command_save(Session &session);
 int command_reboot(Session &session);
 int command_flash(Session &session);
+
+// The pages of a Microchip HEX application image for `aseba flash`, checked
+// whole as the robots' bootloaders will check it (records, descriptor, CRC),
+// so that no robot is taken out of service for an image it would refuse.
+// Throws InputError.
+std::vector<client::FlashPage> read_flash_image(const std::string &path);
 
 // True once Ctrl-C was pressed (watch and monitor stop then).
 bool interrupted();

@@ -25,6 +25,7 @@
 #include "network.hpp"
 #include "network_status.hpp"
 #include "robot_memory.hpp"
+#include "tools/command_line/command_line.hpp"
 #include "tools/compiler/program_file.hpp"
 #include "tools/compiler/target_presets.hpp"
 
@@ -35,36 +36,20 @@ extern "C" {
 namespace
 {
 
-const char usage[] = R"(Usage: epuck-emu [OPTIONS]
+const char *const USAGE = "usage: epuck-emu [options]";
 
-Runs simulated e-puck robots, each with the real firmware, as one Aseba
+const char *const DESCRIPTION =
+  R"(Runs simulated e-puck robots, each with the real firmware, as one Aseba
 network (protocol 5) that Aseba Studio, asebamassloader, asebacmd and the
 other Aseba tools reach over TCP, as they would reach real robots behind a
 Bluetooth switch.
 
-Options:
-  --port N          TCP port of the network (default 33333)
-  --robot-ports B   also give each robot a port of its own, as each robot of
-                    the reference simulator has: robot i (from 0: node id
-                    i+1, or the arena file's i-th robot) listens on B+i too,
-                    where a tool is linked to it alone, as by Bluetooth: the
-                    tool hears that robot only and reaches that robot only,
-                    while the robot's frames still reach the whole network
-  --robots N        number of robots, node ids 1..N (default 1)
-  --duration S      stop after S seconds (default: run until interrupted)
-  --load FILE       compile FILE (an .aesl project or a script) for the e-puck
-                    and start it on every robot, as if stored in the robots
-  --node NAME       in an .aesl project, the node whose program to load
-                    (default: the one named e-puck, else the first)
-  --firmware FILE   the application image (Microchip HEX with its descriptor,
-                    as `make dspic30` writes it) in every robot's flash at
-                    start (default: a placeholder image that the bootloader
-                    accepts)
-  --memory DIR      keep each robot's flash and EEPROM in DIR/robot-ID.mem:
-                    loaded at start when present, saved when epuck-emu stops;
-                    stored programs and flashed images then outlive the run
-  --quiet           no status line
-  -h, --help        show this help
+The network listens on the loopback interface only (127.0.0.1): tools of
+this computer reach it, nothing else does. Aseba has no authentication (nor
+has the robots' Bluetooth link): whoever reaches the port can stop,
+reprogram, reboot or flash every robot and speak as any node. --listen
+ADDRESS opens it to other computers, e.g. --listen 0.0.0.0 for every
+interface (docs/threat-model.md).
 
 Each robot starts its firmware at once and runs the program stored in its
 flash (or --load's). REBOOT (Studio, `aseba reboot`, `aseba flash`) resets it
@@ -73,25 +58,12 @@ as on the chip: its Aseba bootloader runs, answers the bootloader messages for
 flashed image is valid. The PC cannot execute dsPIC code: a valid image runs
 this build's firmware.
 
-Arena mode (robots in a physical world, simulated by Enki):
-  --arena FILE      run the arena described in FILE (docs/arena-format.md),
-                    or `default` for the paper's setup: a square arena with
-                    red, green and blue ground areas and 6 e-pucks
-  --robots N        in arena mode, keep the file's first N robots or add
-                    robots on free places up to N (default: the file's)
-  --seed N          seed of every random draw (default 1): the same arena,
-                    seed and program give the same run, bit for bit, while
-                    no tool sends frames
-  --speed S         `max` (as fast as possible, the default) or `realtime`
-  --duration S      stop after S simulated seconds
-  --headless        accepted for compatibility: there is no window anyway
-
 Without --arena, the robots stand in a flat, empty world (no physics): their
 drivers read neutral sensor values (no obstacle, robot level, silence),
 ir_sensors fires after each full IR update (about 63 Hz) and timer every
 timer.period ms; the flat world has no camera, so the camera event does not
-fire.
-)";
+fire. With --arena, the robots are in a physical world simulated by Enki,
+in simulated time.)";
 
 std::atomic<bool> stop_requested{ false };
 
@@ -102,6 +74,7 @@ void request_stop(int)
 
 struct Options {
     uint16_t port = 33333;
+    std::string listen_address = aseba::host::LOOPBACK_ADDRESS;
     uint16_t robot_ports = 0; // the first robot's own port; 0: none
     unsigned robots = 1;
     double duration_seconds = 0;
@@ -118,71 +91,104 @@ struct Options {
 
 [[noreturn]] void fail(const std::string &message)
 {
-    std::fprintf(stderr, "epuck-emu: %s\n(run with --help for the options)\n", message.c_str());
-    std::exit(2);
-}
-
-unsigned long parse_number(const char *option,
-                           const char *text,
-                           unsigned long low,
-                           unsigned long high)
-{
-    char *end = nullptr;
-    errno = 0;
-    unsigned long value = std::strtoul(text, &end, 10);
-    if (errno != 0 || end == text || *end != '\0' || value < low || value > high)
-        fail(std::string(option) + " expects a whole number from " + std::to_string(low) + " to " +
-             std::to_string(high) + ", not '" + text + "'");
-    return value;
+    aseba::command_line::print_usage_error("epuck-emu", message);
+    std::exit(aseba::command_line::EXIT_USAGE);
 }
 
 Options parse_options(int argc, char **argv)
 {
     Options options;
-    for (int i = 1; i < argc; i++) {
-        std::string argument = argv[i];
-        auto value = [&]() -> const char * {
-            if (i + 1 >= argc)
-                fail(argument + " needs a value");
-            return argv[++i];
-        };
-        if (argument == "-h" || argument == "--help") {
-            std::fputs(usage, stdout);
-            std::exit(0);
-        } else if (argument == "--port") {
-            options.port = uint16_t(parse_number("--port", value(), 1, 65535));
-        } else if (argument == "--robot-ports") {
-            options.robot_ports = uint16_t(parse_number("--robot-ports", value(), 1, 65535));
-        } else if (argument == "--robots") {
-            options.robots = unsigned(parse_number("--robots", value(), 1, 1000));
-            options.robots_given = true;
-        } else if (argument == "--arena") {
-            options.arena = value();
-        } else if (argument == "--seed") {
-            options.seed = uint32_t(parse_number("--seed", value(), 0, 0xFFFFFFFFul));
-        } else if (argument == "--speed") {
-            std::string speed = value();
-            if (speed != "max" && speed != "realtime")
-                fail("--speed is max or realtime, not '" + speed + "'");
-            options.realtime = speed == "realtime";
-        } else if (argument == "--headless") {
-            // There is no window to hide.
-        } else if (argument == "--load") {
-            options.load = value();
-        } else if (argument == "--node") {
-            options.node = value();
-        } else if (argument == "--firmware") {
-            options.firmware = value();
-        } else if (argument == "--memory") {
-            options.memory_folder = value();
-        } else if (argument == "--quiet") {
-            options.quiet = true;
-        } else if (argument == "--duration") {
-            options.duration_seconds = double(parse_number("--duration", value(), 0, 1u << 30));
-        } else {
-            fail("unknown option '" + argument + "'");
-        }
-    }
+    CLI::App app(DESCRIPTION, "epuck-emu");
+    auto formatter = aseba::command_line::use_common_style(app);
+    formatter->set_usage(&app, USAGE);
+    app.footer(aseba::command_line::EXIT_STATUS_TEXT);
+    app.add_option("--port", options.port, "TCP port of the network (default 33333)")
+      ->check(CLI::Range(1, 65535).description(""))
+      ->type_name("N");
+    app
+      .add_option("--listen",
+                  options.listen_address,
+                  "the address to listen on (default 127.0.0.1, this computer only);\n"
+                  "0.0.0.0 or :: opens the robots to the network (see above)")
+      ->type_name("ADDRESS");
+    app
+      .add_option("--robot-ports",
+                  options.robot_ports,
+                  "also give each robot a port of its own, as each robot of the\n"
+                  "reference simulator has: robot i (from 0: node id i+1, or the\n"
+                  "arena file's i-th robot) listens on B+i too, where a tool is linked\n"
+                  "to it alone, as by Bluetooth: the tool hears that robot only and\n"
+                  "reaches that robot only, while the robot's frames still reach the\n"
+                  "whole network")
+      ->check(CLI::Range(1, 65535).description(""))
+      ->type_name("B");
+    CLI::Option *robots = app
+                            .add_option("--robots",
+                                        options.robots,
+                                        "number of robots, node ids 1..N (default 1); in arena\n"
+                                        "mode, keep the file's first N robots or add robots on\n"
+                                        "free places up to N (default: the file's)")
+                            ->check(CLI::Range(1, 1000).description(""))
+                            ->type_name("N");
+    app
+      .add_option("--duration",
+                  options.duration_seconds,
+                  "stop after S seconds (simulated seconds in arena mode; default: run\n"
+                  "until interrupted)")
+      ->check(CLI::Range(0.0, double(1u << 30)).description(""))
+      ->type_name("S");
+    app
+      .add_option("--load",
+                  options.load,
+                  "compile FILE (an .aesl project or a script) for the e-puck and start\n"
+                  "it on every robot, as if stored in the robots")
+      ->type_name("FILE");
+    app
+      .add_option("--node",
+                  options.node,
+                  "in an .aesl project, the node whose program to load (default: the\n"
+                  "one named e-puck, else the first)")
+      ->type_name("NAME");
+    app
+      .add_option("--firmware",
+                  options.firmware,
+                  "the application image (Microchip HEX with its descriptor, as `make\n"
+                  "dspic30` writes it) in every robot's flash at start (default: a\n"
+                  "placeholder image that the bootloader accepts)")
+      ->type_name("FILE");
+    app
+      .add_option("--memory",
+                  options.memory_folder,
+                  "keep each robot's flash and EEPROM in DIR/robot-ID.mem: loaded at\n"
+                  "start when present, written at every flash or EEPROM write, so that\n"
+                  "stored programs and flashed images outlive the run, even a kill -9")
+      ->type_name("DIR");
+    app.add_flag("--quiet", options.quiet, "no status line");
+    app
+      .add_option("--arena",
+                  options.arena,
+                  "run the arena described in FILE (docs/arena-format.md), or `default`\n"
+                  "for the paper's setup: a square arena with red, green and blue\n"
+                  "ground areas and 6 e-pucks")
+      ->type_name("FILE|default");
+    app
+      .add_option("--seed",
+                  options.seed,
+                  "arena mode: seed of every random draw (default 1): the same arena,\n"
+                  "seed and program give the same run, bit for bit, while no tool sends\n"
+                  "frames")
+      ->type_name("N");
+    std::string speed = "max";
+    app
+      .add_option(
+        "--speed", speed, "arena mode: `max` (as fast as possible, the default) or `realtime`")
+      ->check(CLI::IsMember({ "max", "realtime" }))
+      ->type_name("SPEED");
+    bool headless = false; // there is no window to hide
+    app.add_flag("--headless", headless, "accepted for compatibility: there is no window anyway");
+    aseba::command_line::parse_or_exit(app, argc, argv);
+    options.robots_given = robots->count() > 0;
+    options.realtime = speed == "realtime";
     return options;
 }
 
@@ -217,25 +223,53 @@ std::function<void(host_robot &)> memory_preparation(const Options &options)
     };
 }
 
-// Saves every robot's memories with --memory; returns false after reporting
-// a failure.
-template<typename RobotAt>
-bool save_memories(const Options &options, size_t count, RobotAt robot_at)
+// With --memory, each robot's memories in their file from now on, as the
+// robot changes them.
+class MemoryFiles
 {
-    if (options.memory_folder.empty())
-        return true;
-    bool saved = true;
-    for (size_t i = 0; i < count; i++) {
-        host_robot &robot = robot_at(i);
+  public:
+    template<typename RobotAt>
+    MemoryFiles(const Options &options, size_t count, RobotAt robot_at)
+    {
+        if (options.memory_folder.empty())
+            return;
         try {
-            aseba::host::save_memories(robot.board, memory_file(options, robot.node_id));
+            for (size_t i = 0; i < count; i++) {
+                host_robot &robot = robot_at(i);
+                files_.push_back(std::make_unique<aseba::host::MemoryFile>(
+                  robot.board, memory_file(options, robot.node_id)));
+            }
         } catch (const std::exception &error) {
-            std::fprintf(stderr, "epuck-emu: %s\n", error.what());
-            saved = false;
+            fail(error.what());
         }
     }
-    return saved;
-}
+
+    // Writes what changed; false after reporting a failure (then it stops
+    // trying, and the run goes on without its memories being kept).
+    bool sync()
+    {
+        try {
+            for (auto &file : files_)
+                file->sync();
+            return true;
+        } catch (const std::exception &error) {
+            std::fprintf(
+              stderr, "epuck-emu: %s; the robots' memories are no longer kept\n", error.what());
+            files_.clear();
+            failed_ = true;
+            return false;
+        }
+    }
+
+    bool failed() const
+    {
+        return failed_;
+    }
+
+  private:
+    std::vector<std::unique_ptr<aseba::host::MemoryFile>> files_;
+    bool failed_ = false;
+};
 
 // With --robot-ports, opens each robot's own port.
 template<typename BoardAt>
@@ -251,7 +285,16 @@ void listen_robot_ports(const Options &options,
         fail("--robot-ports " + std::to_string(options.robot_ports) + " leaves no port for robot " +
              std::to_string(count));
     for (size_t i = 0; i < count; i++)
-        network.listen_robot(&board_at(i), uint16_t(options.robot_ports + i));
+        network.listen_robot(
+          &board_at(i), uint16_t(options.robot_ports + i), options.listen_address);
+}
+
+// How the start-up line tells who may connect.
+std::string listen_note(const Options &options)
+{
+    if (options.listen_address == aseba::host::LOOPBACK_ADDRESS)
+        return " (this computer only)";
+    return " (open to the network on " + options.listen_address + ")";
 }
 
 // How the start-up line tells the robots' own ports, if any.
@@ -263,8 +306,9 @@ std::string robot_ports_note(const Options &options, size_t count)
            std::to_string(options.robot_ports + count - 1) + ")";
 }
 
-// The program of --load, compiled for the e-puck; exits with the compiler's
-// message when it does not compile.
+// The program of --load, compiled for the e-puck; exits with status 2 when
+// the file cannot be read or is no valid project, with the compiler's
+// message and status 1 when it does not compile.
 aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &bytecode)
 {
     aseba::ProgramFile program;
@@ -279,14 +323,14 @@ aseba::ProgramFile load_program(const Options &options, std::vector<uint16_t> &b
         }
     } catch (const std::runtime_error &error) {
         std::fprintf(stderr, "%s\n", error.what());
-        std::exit(1);
+        std::exit(aseba::command_line::EXIT_USAGE);
     }
     std::string error_text;
     aseba::CompileResult result =
       aseba::compile_program_file(program, aseba::epuck_target(), error_text);
     if (!result.ok) {
         std::fputs(error_text.c_str(), stderr);
-        std::exit(1);
+        std::exit(aseba::command_line::EXIT_FAILED);
     }
     bytecode = result.bytecode;
     return program;
@@ -320,7 +364,7 @@ int run_arena(const Options &options,
     aseba::arena::ArenaSimulation &simulation = *simulation_owner;
     aseba::host::Network &network = simulation.network();
     try {
-        network.listen(options.port);
+        network.listen(options.port, options.listen_address);
         listen_robot_ports(options,
                            network,
                            simulation.robot_count(),
@@ -330,9 +374,12 @@ int run_arena(const Options &options,
     }
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
+    MemoryFiles memories(options, simulation.robot_count(), [&](size_t i) -> host_robot & {
+        return simulation.robot(i);
+    });
 
     std::printf("epuck-emu: arena %s (%.0f x %.0f cm, %zu ground area%s), %zu robot%s on "
-                "tcp:port=%u%s, seed %u, %s speed%s%s\n",
+                "tcp:port=%u%s%s, seed %u, %s speed%s%s\n",
                 options.arena.c_str(),
                 arena.width,
                 arena.height,
@@ -341,6 +388,7 @@ int run_arena(const Options &options,
                 arena.robots.size(),
                 arena.robots.size() == 1 ? "" : "s",
                 unsigned(options.port),
+                listen_note(options).c_str(),
                 robot_ports_note(options, arena.robots.size()).c_str(),
                 unsigned(options.seed),
                 options.realtime ? "real-time" : "maximum",
@@ -360,6 +408,7 @@ int run_arena(const Options &options,
         if (options.duration_seconds > 0 && simulation.seconds() >= options.duration_seconds)
             break;
         simulation.step();
+        memories.sync();
         double wall = wall_seconds();
         // Ahead of the clock: wait, serving tools meanwhile. A frame ends a
         // wait early, so wait again until the clock has caught up.
@@ -397,10 +446,8 @@ int run_arena(const Options &options,
           status.line(simulation.seconds(), simulation.robot_count(), network.client_count());
         std::printf("epuck-emu: %s\n", line.c_str());
     }
-    bool saved = save_memories(options, simulation.robot_count(), [&](size_t i) -> host_robot & {
-        return simulation.robot(i);
-    });
-    return saved ? 0 : 1;
+    memories.sync();
+    return memories.failed() ? aseba::command_line::EXIT_FAILED : aseba::command_line::EXIT_OK;
 }
 
 } // namespace
@@ -422,7 +469,7 @@ int main(int argc, char **argv)
     std::vector<std::unique_ptr<host_robot>> robots;
     aseba::host::Network network;
     try {
-        network.listen(options.port);
+        network.listen(options.port, options.listen_address);
         auto prepare = memory_preparation(options);
         for (unsigned i = 0; i < options.robots; i++) {
             auto robot = std::make_unique<host_robot>();
@@ -439,11 +486,14 @@ int main(int argc, char **argv)
     }
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
+    MemoryFiles memories(
+      options, robots.size(), [&](size_t i) -> host_robot & { return *robots[i]; });
 
-    std::printf("epuck-emu: %u robot%s on tcp:port=%u%s%s%s\n",
+    std::printf("epuck-emu: %u robot%s on tcp:port=%u%s%s%s%s\n",
                 options.robots,
                 options.robots == 1 ? "" : "s",
                 unsigned(options.port),
+                listen_note(options).c_str(),
                 robot_ports_note(options, robots.size()).c_str(),
                 options.load.empty() ? "" : ", running ",
                 options.load.c_str());
@@ -469,6 +519,7 @@ int main(int argc, char **argv)
             host_board_set_time(&robot->board, now_ms);
             busy |= host_robot_poll(robot.get());
         }
+        memories.sync();
         // Wait for the network only when no robot has work left; the robots'
         // clocks tick in milliseconds, so never wait longer than one.
         network.service(busy ? 0 : 1);
@@ -483,7 +534,6 @@ int main(int argc, char **argv)
                 terminal && !options.quiet ? "\n" : "",
                 std::chrono::duration<double>(clock::now() - start).count(),
                 static_cast<unsigned long long>(network.frames_moved()));
-    bool saved =
-      save_memories(options, robots.size(), [&](size_t i) -> host_robot & { return *robots[i]; });
-    return saved ? 0 : 1;
+    memories.sync();
+    return memories.failed() ? aseba::command_line::EXIT_FAILED : aseba::command_line::EXIT_OK;
 }

@@ -1,20 +1,22 @@
-// The host's Aseba network: POSIX sockets and a frame bus between boards and
-// clients.
+// The host's Aseba network: a frame bus between boards and TCP clients,
+// over standalone asio.
 
 #include "network.hpp"
 
+// Standalone asio, not Boost's. Its aligned allocation depends on a macro
+// the standard library defines only once one of its headers is in, so two
+// files could choose differently and free with the wrong function: use
+// operator new and delete everywhere.
+#define ASIO_STANDALONE
+#define ASIO_DISABLE_STD_ALIGNED_ALLOC
+#include <asio.hpp>
+
 #include <algorithm>
-#include <arpa/inet.h>
-#include <cerrno>
+#include <array>
 #include <cstdio>
-#include <cstring>
-#include <fcntl.h>
-#include <netinet/in.h>
-#include <netinet/tcp.h>
-#include <poll.h>
+#include <deque>
+#include <map>
 #include <stdexcept>
-#include <sys/socket.h>
-#include <unistd.h>
 
 extern "C" {
 #include "vm/node_protocol.h"
@@ -26,20 +28,20 @@ namespace aseba::host
 namespace
 {
 
-// A client that reads nothing while this much waits for it is dropped, so a
-// stalled tool cannot make the simulator's memory grow without bound.
-constexpr size_t client_backlog_limit = 4 * 1024 * 1024;
 // Where a frame's message type lies (protocol.md §2).
 constexpr size_t type_offset = 4;
+// Bytes taken from a client at a time: at most this many frames' worth can
+// overshoot its share before reading stops.
+constexpr size_t read_chunk = 1024;
+// Socket events handled in one service() call after the first, so that
+// a client that never stops sending cannot keep service() from returning.
+constexpr int max_events_per_service = 256;
+// The robots' frames, in the queue of each board, as one source.
+constexpr uint64_t robots_source = 0;
 
 uint16_t read_u16(const uint8_t *bytes)
 {
     return uint16_t(bytes[0] | (bytes[1] << 8));
-}
-
-void set_non_blocking(int fd)
-{
-    fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
 }
 
 } // namespace
@@ -48,6 +50,11 @@ bool FrameReader::feed(const uint8_t *bytes, size_t count)
 {
     if (broken_)
         return false;
+    // Drop what earlier frames used before the buffer grows.
+    if (consumed_ > 0) {
+        pending_.erase(pending_.begin(), pending_.begin() + long(consumed_));
+        consumed_ = 0;
+    }
     pending_.insert(pending_.end(), bytes, bytes + count);
     if (pending_.size() >= 2 && read_u16(pending_.data()) > NODE_MAX_PAYLOAD)
         broken_ = true;
@@ -56,223 +63,455 @@ bool FrameReader::feed(const uint8_t *bytes, size_t count)
 
 std::optional<Frame> FrameReader::next()
 {
-    if (broken_ || pending_.size() < NODE_HEADER_SIZE)
+    size_t available = pending_.size() - consumed_;
+    if (broken_ || available < NODE_HEADER_SIZE)
         return std::nullopt;
-    size_t length = NODE_HEADER_SIZE + read_u16(pending_.data());
-    if (pending_.size() < length)
+    const uint8_t *start = pending_.data() + consumed_;
+    size_t length = NODE_HEADER_SIZE + read_u16(start);
+    if (available < length)
         return std::nullopt;
-    Frame frame(pending_.begin(), pending_.begin() + long(length));
-    pending_.erase(pending_.begin(), pending_.begin() + long(length));
-    if (pending_.size() >= 2 && read_u16(pending_.data()) > NODE_MAX_PAYLOAD)
+    Frame frame(start, start + length);
+    consumed_ += length;
+    if (pending_.size() - consumed_ >= 2 &&
+        read_u16(pending_.data() + consumed_) > NODE_MAX_PAYLOAD)
         broken_ = true;
     return frame;
 }
 
-// A board or a client: what it sent, cut into frames, and what waits for it.
-struct Network::Member {
-    Network *network = nullptr;
-    hal_board *board = nullptr; // for a board
-    int fd = -1;                // for a client
-    Member *robot = nullptr;    // for a client linked to this board alone
-    FrameReader reader;
-    std::deque<Frame> to_board;
-    std::string to_client;
+namespace
+{
+
+// Frames waiting for one board from one source.
+struct SourceQueue {
+    std::deque<Frame> frames;
+    size_t bytes = 0;
+    bool full = false; // a client's queue at its share: the client is not read
 };
 
-Network::Network() = default;
+struct Board;
 
-Network::~Network()
+// Where a board's frames go.
+struct Bus {
+    virtual void broadcast_from_board(Board &from, const Frame &frame) = 0;
+
+  protected:
+    ~Bus() = default;
+};
+
+// A board on the bus: its output cut into frames, and what waits for it, by
+// source (the robots, then each client by number), served in turn.
+struct Board {
+    Bus *bus = nullptr;
+    hal_board *board = nullptr;
+    FrameReader reader;
+    std::map<uint64_t, SourceQueue> waiting;
+    size_t waiting_frames = 0; // in every queue
+    uint64_t last_served = robots_source;
+};
+
+// The board's link output, cut into frames for the bus.
+void board_output(void *context, const uint8_t *bytes, uint16_t count)
 {
-    for (const Listener &listener : listeners_)
-        close(listener.fd);
-    for (auto &client : clients_)
-        close(client->fd);
+    auto *board = static_cast<Board *>(context);
+    // The node never announces an oversized frame, so the reader cannot break.
+    board->reader.feed(bytes, count);
+    while (auto frame = board->reader.next())
+        board->bus->broadcast_from_board(*board, *frame);
 }
 
-int Network::open_listener(uint16_t &port)
-{
-    int fd = socket(AF_INET, SOCK_STREAM, 0);
-    if (fd < 0)
-        throw std::runtime_error(std::string("cannot create a socket: ") + strerror(errno));
-    int yes = 1;
-    setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_addr.s_addr = htonl(INADDR_ANY);
-    address.sin_port = htons(port);
-    if (bind(fd, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0 ||
-        ::listen(fd, 8) != 0) {
-        std::string reason = strerror(errno);
-        close(fd);
-        throw std::runtime_error("cannot listen on TCP port " + std::to_string(port) + ": " +
-                                 reason);
+struct Client {
+    explicit Client(asio::io_context &io)
+      : socket(io)
+    {
     }
-    socklen_t length = sizeof address;
-    getsockname(fd, reinterpret_cast<sockaddr *>(&address), &length);
-    port = ntohs(address.sin_port);
-    set_non_blocking(fd);
-    return fd;
+    uint64_t number = 0;
+    asio::ip::tcp::socket socket;
+    Board *robot = nullptr; // a client linked to this board alone
+    FrameReader reader;
+    std::array<uint8_t, read_chunk> input{};
+    bool reading = false;
+    size_t full_queues = 0; // boards where this client has its share waiting
+    std::string unsent;     // for the client, after what is being sent
+    std::string sending;
+    bool writing = false;
+    bool closed = false;
+};
+
+struct Listener {
+    explicit Listener(asio::io_context &io)
+      : acceptor(io)
+    {
+    }
+    asio::ip::tcp::acceptor acceptor;
+    Board *robot = nullptr;
+    bool accepting = false; // an accept is pending
+};
+
+} // namespace
+
+struct Network::State final : Bus {
+    asio::io_context io;
+    // service() waits for its time even when no socket is open.
+    asio::executor_work_guard<asio::io_context::executor_type> work = asio::make_work_guard(io);
+    std::vector<std::unique_ptr<Listener>> listeners;
+    std::vector<std::unique_ptr<Board>> boards;
+    std::vector<std::shared_ptr<Client>> clients;
+    uint64_t next_client_number = robots_source + 1;
+    uint64_t frames_moved = 0;
+    uint64_t frames_dropped = 0;
+    bool relay_robot_events = true;
+    std::function<void(const Frame &)> observer;
+
+    ~State()
+    {
+        for (auto &client : clients)
+            client->socket.close();
+        for (auto &listener : listeners)
+            listener->acceptor.close();
+        clients.clear();
+        io.stop();
+    }
+
+    uint16_t open_listener(Listener &listener, uint16_t port, const std::string &address)
+    {
+        std::string where = address + " port " + std::to_string(port);
+        try {
+            asio::ip::tcp::endpoint endpoint(asio::ip::make_address(address), port);
+            listener.acceptor.open(endpoint.protocol());
+            listener.acceptor.set_option(asio::ip::tcp::acceptor::reuse_address(true));
+            listener.acceptor.bind(endpoint);
+            // The system's longest backlog: bursts of connections wait there
+            // to be accepted, none is refused or delayed by a retry.
+            listener.acceptor.listen(asio::socket_base::max_listen_connections);
+        } catch (const std::system_error &error) {
+            throw std::runtime_error("cannot listen on " + where + ": " + error.code().message());
+        }
+        accept(listener);
+        return listener.acceptor.local_endpoint().port();
+    }
+
+    size_t open_clients() const
+    {
+        return size_t(std::count_if(
+          clients.begin(), clients.end(), [](const auto &client) { return !client->closed; }));
+    }
+
+    // Accepts the next client, unless MAX_CLIENTS are connected: then new
+    // connections wait in the system's backlog until one leaves (sweep).
+    void accept(Listener &listener)
+    {
+        listener.accepting = open_clients() < MAX_CLIENTS;
+        if (!listener.accepting)
+            return;
+        listener.acceptor.async_accept(
+          [this, &listener](std::error_code error, asio::ip::tcp::socket socket) {
+              if (error == asio::error::operation_aborted)
+                  return;
+              if (!error)
+                  add_client(std::move(socket), listener.robot);
+              accept(listener);
+          });
+    }
+
+    void add_client(asio::ip::tcp::socket socket, Board *robot)
+    {
+        std::error_code ignored;
+        // Hosts wait for each answer: do not let Nagle hold small frames.
+        socket.set_option(asio::ip::tcp::no_delay(true), ignored);
+        auto client = std::make_shared<Client>(io);
+        client->socket = std::move(socket);
+        client->number = next_client_number++;
+        client->robot = robot;
+        clients.push_back(client);
+        start_read(client);
+    }
+
+    void start_read(const std::shared_ptr<Client> &client)
+    {
+        if (client->closed || client->reading || client->full_queues > 0)
+            return;
+        client->reading = true;
+        client->socket.async_read_some(
+          asio::buffer(client->input), [this, client](std::error_code error, size_t count) {
+              client->reading = false;
+              if (client->closed)
+                  return;
+              if (error) {
+                  close(*client, nullptr); // closed by the peer, or failed
+                  return;
+              }
+              if (!client->reader.feed(client->input.data(), count)) {
+                  close(*client, "it sent a frame longer than the protocol allows");
+                  return;
+              }
+              while (auto frame = client->reader.next())
+                  broadcast_from_client(*client, *frame);
+              start_read(client);
+          });
+    }
+
+    void start_write(const std::shared_ptr<Client> &client)
+    {
+        if (client->closed || client->writing || client->unsent.empty())
+            return;
+        client->writing = true;
+        client->sending.swap(client->unsent);
+        asio::async_write(client->socket,
+                          asio::buffer(client->sending),
+                          [this, client](std::error_code error, size_t) {
+                              client->writing = false;
+                              client->sending.clear();
+                              if (client->closed)
+                                  return;
+                              if (error) {
+                                  close(*client, nullptr);
+                                  return;
+                              }
+                              start_write(client);
+                          });
+    }
+
+    // Closes the client's socket; it leaves `clients` at the next sweep.
+    // The frames it sent stay queued for the boards (a tool may send a
+    // command and hang up at once, as asebacmd does).
+    void close(Client &client, const char *reason)
+    {
+        if (client.closed)
+            return;
+        if (reason)
+            std::fprintf(stderr, "network: client dropped: %s\n", reason);
+        client.closed = true;
+        std::error_code ignored;
+        client.socket.close(ignored);
+    }
+
+    void sweep()
+    {
+        clients.erase(std::remove_if(clients.begin(),
+                                     clients.end(),
+                                     [](const auto &client) { return client->closed; }),
+                      clients.end());
+        for (auto &listener : listeners)
+            if (!listener->accepting)
+                accept(*listener);
+    }
+
+    std::shared_ptr<Client> client_numbered(uint64_t number) const
+    {
+        for (const auto &client : clients)
+            if (client->number == number)
+                return client;
+        return nullptr;
+    }
+
+    void enqueue(Board &board, uint64_t source, const Frame &frame)
+    {
+        SourceQueue &queue = board.waiting[source];
+        if (source == robots_source && queue.frames.size() >= ROBOT_FRAMES_PER_ROBOT) {
+            frames_dropped++;
+            return;
+        }
+        queue.frames.push_back(frame);
+        queue.bytes += frame.size();
+        board.waiting_frames++;
+        if (source != robots_source && !queue.full &&
+            (queue.frames.size() >= CLIENT_FRAMES_PER_ROBOT ||
+             queue.bytes >= CLIENT_BYTES_PER_ROBOT)) {
+            queue.full = true;
+            if (auto client = client_numbered(source))
+                client->full_queues++;
+        }
+    }
+
+    void count(const Frame &frame)
+    {
+        frames_moved++;
+        if (observer)
+            observer(frame);
+    }
+
+    void send_to_clients(const Board *from_board, const Client *from_client, const Frame &frame)
+    {
+        // Direct clients hear their own robot only.
+        for (auto &client : clients) {
+            if (client->closed || client.get() == from_client ||
+                (client->robot != nullptr && client->robot != from_board))
+                continue;
+            client->unsent.append(frame.begin(), frame.end());
+            if (client->unsent.size() + client->sending.size() > CLIENT_UNREAD_LIMIT) {
+                close(*client, "it stopped reading");
+                continue;
+            }
+            start_write(client);
+        }
+    }
+
+    void broadcast_from_board(Board &from, const Frame &frame) override
+    {
+        count(frame);
+        const bool user_event = read_u16(frame.data() + type_offset) < NODE_FIRST_SYSTEM_TYPE;
+        if (!user_event || relay_robot_events)
+            for (auto &board : boards)
+                if (board.get() != &from)
+                    enqueue(*board, robots_source, frame);
+        send_to_clients(&from, nullptr, frame);
+    }
+
+    void broadcast_from_client(const Client &from, const Frame &frame)
+    {
+        count(frame);
+        if (from.robot != nullptr) {
+            // A client linked directly to one robot talks to it alone.
+            enqueue(*from.robot, from.number, frame);
+            return;
+        }
+        for (auto &board : boards)
+            enqueue(*board, from.number, frame);
+        send_to_clients(nullptr, &from, frame);
+    }
+
+    // The next source with frames for `board`, after the last one served;
+    // end() when none has any.
+    std::map<uint64_t, SourceQueue>::iterator next_source(Board &board)
+    {
+        auto found = board.waiting.upper_bound(board.last_served);
+        for (size_t tried = 0; tried < board.waiting.size(); tried++, ++found) {
+            if (found == board.waiting.end())
+                found = board.waiting.begin();
+            if (!found->second.frames.empty())
+                return found;
+        }
+        return board.waiting.end();
+    }
+
+    // Feeds each link what it can hold, whole frames only, a frame from each
+    // source in turn. Queues stay for the next frames (the robots' one
+    // always), but a departed client's goes once empty.
+    void deliver_to_boards()
+    {
+        for (auto &board : boards) {
+            while (board->waiting_frames > 0) {
+                auto source = next_source(*board);
+                SourceQueue &queue = source->second;
+                const Frame &frame = queue.frames.front();
+                if (!host_board_link_deliver(board->board, frame.data(), uint16_t(frame.size())))
+                    break;
+                queue.bytes -= frame.size();
+                queue.frames.pop_front();
+                board->waiting_frames--;
+                board->last_served = source->first;
+                if (source->first == robots_source)
+                    continue;
+                std::shared_ptr<Client> client = client_numbered(source->first);
+                bool now_room = queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
+                                queue.bytes < CLIENT_BYTES_PER_ROBOT;
+                if (queue.full && now_room) {
+                    queue.full = false;
+                    if (client) {
+                        client->full_queues--;
+                        start_read(client);
+                    }
+                }
+                if (!client && queue.frames.empty())
+                    board->waiting.erase(source);
+            }
+        }
+    }
+};
+
+Network::Network()
+  : state_(std::make_unique<State>())
+{
 }
 
-uint16_t Network::listen(uint16_t port)
+Network::~Network() = default;
+
+uint16_t Network::listen(uint16_t port, const std::string &address)
 {
-    int fd = open_listener(port);
-    listeners_.push_back({ fd, nullptr });
-    return port;
+    auto listener = std::make_unique<Listener>(state_->io);
+    uint16_t chosen = state_->open_listener(*listener, port, address);
+    state_->listeners.push_back(std::move(listener));
+    return chosen;
 }
 
-uint16_t Network::listen_robot(hal_board *board, uint16_t port)
+uint16_t Network::listen_robot(hal_board *board, uint16_t port, const std::string &address)
 {
-    auto attached = std::find_if(boards_.begin(), boards_.end(), [board](const auto &member) {
-        return member->board == board;
-    });
-    if (attached == boards_.end())
+    auto attached = std::find_if(state_->boards.begin(),
+                                 state_->boards.end(),
+                                 [board](const auto &member) { return member->board == board; });
+    if (attached == state_->boards.end())
         throw std::invalid_argument("listen_robot: the board is not on the network");
-    int fd = open_listener(port);
-    listeners_.push_back({ fd, attached->get() });
-    return port;
+    auto listener = std::make_unique<Listener>(state_->io);
+    listener->robot = attached->get();
+    uint16_t chosen = state_->open_listener(*listener, port, address);
+    state_->listeners.push_back(std::move(listener));
+    return chosen;
 }
 
 void Network::attach(hal_board *board)
 {
-    auto member = std::make_unique<Member>();
-    member->network = this;
+    auto member = std::make_unique<Board>();
+    member->bus = state_.get();
     member->board = board;
     board->link_output = board_output;
     board->link_context = member.get();
-    boards_.push_back(std::move(member));
-}
-
-void Network::board_output(void *context, const uint8_t *bytes, uint16_t count)
-{
-    auto *member = static_cast<Member *>(context);
-    // The node never announces an oversized frame, so the reader cannot break.
-    member->reader.feed(bytes, count);
-    while (auto frame = member->reader.next())
-        member->network->broadcast(member, *frame);
-}
-
-void Network::broadcast(const Member *from, const Frame &frame)
-{
-    frames_moved_++;
-    if (observer_)
-        observer_(frame);
-    if (from && from->robot) {
-        // A client linked directly to one robot talks to it alone.
-        from->robot->to_board.push_back(frame);
-        return;
-    }
-    const bool user_event = read_u16(frame.data() + type_offset) < NODE_FIRST_SYSTEM_TYPE;
-    const bool from_board = from && from->board;
-    if (!from_board || !user_event || relay_robot_events_) {
-        for (auto &board : boards_) {
-            if (board.get() != from)
-                board->to_board.push_back(frame);
-        }
-    }
-    // Direct clients hear their own robot only.
-    for (auto &client : clients_) {
-        if (client.get() != from && (client->robot == nullptr || client->robot == from))
-            client->to_client.append(frame.begin(), frame.end());
-    }
-}
-
-void Network::close_client(size_t index, const char *reason)
-{
-    if (reason)
-        std::fprintf(stderr, "network: client dropped: %s\n", reason);
-    close(clients_[index]->fd);
-    clients_.erase(clients_.begin() + long(index));
-}
-
-size_t Network::client_count() const
-{
-    return clients_.size();
-}
-
-void Network::deliver_to_boards()
-{
-    // Feed each link what it can hold, whole frames only.
-    for (auto &board : boards_) {
-        while (!board->to_board.empty()) {
-            const Frame &frame = board->to_board.front();
-            if (!host_board_link_deliver(board->board, frame.data(), uint16_t(frame.size())))
-                break;
-            board->to_board.pop_front();
-        }
-    }
+    state_->boards.push_back(std::move(member));
 }
 
 void Network::service(int timeout_ms)
 {
-    deliver_to_boards();
-    // What arrives while waiting reaches the boards before this returns, so
+    State &state = *state_;
+    state.deliver_to_boards();
+    if (state.io.stopped())
+        state.io.restart();
+    // Waits for the first event if asked to, then handles what is ready.
+    if (timeout_ms > 0)
+        state.io.run_one_for(std::chrono::milliseconds(timeout_ms));
+    for (int i = 0; i < max_events_per_service && state.io.poll_one() > 0; i++) {
+    }
+    state.sweep();
+    // What arrived while waiting reaches the boards before this returns, so
     // that robots answer at their next poll rather than after another wait.
-    struct DeliverOnReturn {
-        Network *network;
-        ~DeliverOnReturn()
-        {
-            network->deliver_to_boards();
-        }
-    } deliver_on_return{ this };
+    state.deliver_to_boards();
+}
 
-    std::vector<pollfd> fds;
-    for (const Listener &listener : listeners_)
-        fds.push_back({ listener.fd, POLLIN, 0 });
-    for (auto &client : clients_)
-        fds.push_back({ client->fd, short(POLLIN | (client->to_client.empty() ? 0 : POLLOUT)), 0 });
-    if (poll(fds.data(), fds.size(), timeout_ms) <= 0)
-        return;
+size_t Network::client_count() const
+{
+    size_t open = 0;
+    for (const auto &client : state_->clients)
+        open += client->closed ? 0 : 1;
+    return open;
+}
 
-    for (size_t i = 0; i < listeners_.size(); i++) {
-        if (!(fds[i].revents & POLLIN))
-            continue;
-        int fd = accept(listeners_[i].fd, nullptr, nullptr);
-        if (fd < 0)
-            continue;
-        set_non_blocking(fd);
-        int yes = 1;
-        // Hosts wait for each answer: do not let Nagle hold small frames.
-        setsockopt(fd, IPPROTO_TCP, TCP_NODELAY, &yes, sizeof yes);
-        auto client = std::make_unique<Member>();
-        client->network = this;
-        client->fd = fd;
-        client->robot = listeners_[i].robot;
-        clients_.push_back(std::move(client));
-    }
+uint64_t Network::frames_moved() const
+{
+    return state_->frames_moved;
+}
 
-    // Clients that were there when poll was called, in reverse so that
-    // closing one does not shift the others' indices.
-    size_t polled = fds.size() - listeners_.size();
-    for (size_t k = polled; k-- > 0;) {
-        Member &client = *clients_[k];
-        short events = fds[listeners_.size() + k].revents;
-        if (events & POLLIN) {
-            uint8_t buffer[4096];
-            ssize_t count = read(client.fd, buffer, sizeof buffer);
-            if (count <= 0) {
-                close_client(k, nullptr);
-                continue;
-            }
-            if (!client.reader.feed(buffer, size_t(count))) {
-                close_client(k, "it sent a frame longer than the protocol allows");
-                continue;
-            }
-            while (auto frame = client.reader.next())
-                broadcast(&client, *frame);
-        }
-        if ((events & POLLOUT) && !client.to_client.empty()) {
-            ssize_t count = write(client.fd, client.to_client.data(), client.to_client.size());
-            if (count > 0)
-                client.to_client.erase(0, size_t(count));
-        }
-        if (events & (POLLERR | POLLHUP)) {
-            close_client(k, nullptr);
-            continue;
-        }
-        if (client.to_client.size() > client_backlog_limit)
-            close_client(k, "it stopped reading");
-    }
+size_t Network::held_bytes() const
+{
+    size_t bytes = 0;
+    for (const auto &board : state_->boards)
+        for (const auto &[source, queue] : board->waiting)
+            bytes += queue.bytes;
+    for (const auto &client : state_->clients)
+        bytes += client->unsent.size() + client->sending.size();
+    return bytes;
+}
+
+uint64_t Network::frames_dropped() const
+{
+    return state_->frames_dropped;
+}
+
+void Network::relay_robot_events(bool relay)
+{
+    state_->relay_robot_events = relay;
+}
+
+void Network::observe(std::function<void(const Frame &)> observer)
+{
+    state_->observer = std::move(observer);
 }
 
 } // namespace aseba::host

@@ -8,14 +8,24 @@
 // into frames (protocol.md §2) before they are passed on, so two clients
 // writing at once never interleave inside a frame on a robot's link.
 //
+// No client can take the network for itself: each robot takes frames from
+// its sources in turn (the robots, then each client), a client may have only
+// a few frames waiting for any robot (then it is not read until they go, so
+// TCP slows it down), and a client that reads nothing while a megabyte waits
+// for it is dropped. Beyond MAX_CLIENTS, new connections wait in the
+// system's backlog until a client leaves. Memory stays bounded whatever
+// clients send.
+//
 // A robot may also have ports of its own (listen_robot), as each robot of the
 // reference simulator has: a client there is like a tool linked to that robot
 // alone by Bluetooth.
+//
+// Sockets are standalone asio's, kept out of this header.
 
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
-#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -28,6 +38,16 @@ extern "C" {
 
 namespace aseba::host
 {
+
+// Where the network listens unless told otherwise: this computer only.
+inline constexpr const char *LOOPBACK_ADDRESS = "127.0.0.1";
+
+// What one client may hold in the network (see the top of this file).
+inline constexpr size_t CLIENT_FRAMES_PER_ROBOT = 64;  // waiting for one robot
+inline constexpr size_t CLIENT_BYTES_PER_ROBOT = 4096; // the same, in bytes
+inline constexpr size_t CLIENT_UNREAD_LIMIT = 1 << 20; // waiting for the client to read
+inline constexpr size_t MAX_CLIENTS = 64;              // connected at once
+inline constexpr size_t ROBOT_FRAMES_PER_ROBOT = 4096; // from the robots, for one robot
 
 using Frame = std::vector<uint8_t>;
 
@@ -43,6 +63,7 @@ class FrameReader
 
   private:
     std::vector<uint8_t> pending_;
+    size_t consumed_ = 0;
     bool broken_ = false;
 };
 
@@ -54,10 +75,10 @@ class Network
     Network(const Network &) = delete;
     Network &operator=(const Network &) = delete;
 
-    // Accepts clients on `port` of the loopback and other interfaces (0: a
-    // port the system chooses); returns the port. Throws std::runtime_error
-    // with the system's reason when it cannot.
-    uint16_t listen(uint16_t port);
+    // Accepts clients on `port` of `address` (0: a port the system chooses);
+    // returns the port. Throws std::runtime_error with the system's reason
+    // when it cannot.
+    uint16_t listen(uint16_t port, const std::string &address = LOOPBACK_ADDRESS);
 
     // Joins a board: its link output comes to the bus, the bus feeds its link.
     void attach(hal_board *board);
@@ -67,7 +88,9 @@ class Network
     // frames only, and its frames reach that board only, not the bus nor
     // the board's other direct clients; the board's frames still reach the
     // bus. Throws std::invalid_argument for a board not attached.
-    uint16_t listen_robot(hal_board *board, uint16_t port);
+    uint16_t listen_robot(hal_board *board,
+                          uint16_t port,
+                          const std::string &address = LOOPBACK_ADDRESS);
 
     // Moves frames: accepts clients, reads and writes sockets (waiting up to
     // `timeout_ms` for one of them), and feeds boards what their links can
@@ -78,47 +101,30 @@ class Network
     size_t client_count() const;
 
     // Frames that crossed the bus since the start.
-    uint64_t frames_moved() const
-    {
-        return frames_moved_;
-    }
+    uint64_t frames_moved() const;
+
+    // Frames from the robots dropped because a robot's link had
+    // ROBOT_FRAMES_PER_ROBOT of them waiting already (a robot flooding the
+    // others, as a saturated radio would lose them).
+    uint64_t frames_dropped() const;
+
+    // Bytes of frames the network holds now, waiting for boards and for
+    // clients: what its memory grows with, bounded by the limits above.
+    size_t held_bytes() const;
 
     // Whether a user event (type below 0x8000) that a board emits reaches the
     // other boards; on by default. Off cuts the robots' radio between
     // themselves, as for the paper's runs without communication: tools still
     // hear such events, and protocol messages and a tool's events still
     // reach every board.
-    void relay_robot_events(bool relay)
-    {
-        relay_robot_events_ = relay;
-    }
+    void relay_robot_events(bool relay);
 
     // Called with every frame that crosses the bus (for status and logs).
-    void observe(std::function<void(const Frame &)> observer)
-    {
-        observer_ = std::move(observer);
-    }
+    void observe(std::function<void(const Frame &)> observer);
 
   private:
-    struct Member;
-    // A listening socket; its clients join the bus, or link to `robot` alone.
-    struct Listener {
-        int fd;
-        Member *robot;
-    };
-    // A listening socket on `port`, which it sets to the port chosen for 0.
-    static int open_listener(uint16_t &port);
-    void broadcast(const Member *from, const Frame &frame);
-    void deliver_to_boards();
-    void close_client(size_t index, const char *reason);
-    static void board_output(void *context, const uint8_t *bytes, uint16_t count);
-
-    std::vector<Listener> listeners_;
-    std::vector<std::unique_ptr<Member>> boards_;
-    std::vector<std::unique_ptr<Member>> clients_;
-    uint64_t frames_moved_ = 0;
-    bool relay_robot_events_ = true;
-    std::function<void(const Frame &)> observer_;
+    struct State;
+    std::unique_ptr<State> state_;
 };
 
 } // namespace aseba::host

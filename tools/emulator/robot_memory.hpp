@@ -41,9 +41,34 @@ void store_program(hal_board &board, const std::vector<uint16_t> &bytecode);
 // Throws when the file exists but is not a robot's memories.
 bool load_memories(hal_board &board, const std::string &path);
 
-// Saves the memories to `path` through a temporary file, so that an
-// interrupted save leaves the previous file whole. Throws on failure.
-void save_memories(const hal_board &board, const std::string &path);
+// A robot's flash and EEPROM kept in a file as they change, so that they
+// outlive the process whatever way it ends (kill -9 included), as a chip's
+// outlive a power cut. The file has host_board_save_memory's layout.
+class MemoryFile
+{
+  public:
+    // Opens (or creates) `path` and writes the board's memories into it
+    // whole. Throws std::runtime_error naming the file.
+    MemoryFile(const hal_board &board, std::string path);
+    ~MemoryFile();
+    MemoryFile(const MemoryFile &) = delete;
+    MemoryFile &operator=(const MemoryFile &) = delete;
+
+    // Writes the rows and words that changed since the last call, if the
+    // board erased or wrote anything since; cheap when it did not. Throws
+    // std::runtime_error when the file cannot be written.
+    void sync();
+
+  private:
+    void write_at(size_t offset, const uint8_t *bytes, size_t count);
+    const hal_board &board_;
+    std::string path_;
+    int fd_ = -1;
+    uint32_t operations_seen_ = 0;
+    // The memories as the file holds them.
+    std::vector<uint16_t> eeprom_;
+    std::vector<uint32_t> flash_;
+};
 
 // Powers a robot on: its flash gets the placeholder application, then
 // `prepare` (if given) may change its memories, then `bytecode` (if not

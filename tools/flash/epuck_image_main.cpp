@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "tools/command_line/command_line.hpp"
 #include "tools/flash/epuck_image.hpp"
 #include "tools/flash/install_command.hpp"
 
@@ -21,24 +22,25 @@ namespace
 
 constexpr const char *usage =
   R"(usage: epuck-image APPLICATION.hex BOOTLOADER.hex OUTPUT.hex FACTORY.hex
-       epuck-image install --port DEVICE [--id N] [--wait SECONDS] FACTORY.hex
+       epuck-image install --port DEVICE [--id N] [--wait SECONDS] FACTORY.hex)";
 
-Builds the e-puck's images from the XC16 HEX files of the application
+constexpr const char *details =
+  R"(Builds the e-puck's images from the XC16 HEX files of the application
 (linked with linker/epuck-app.gld) and of the Aseba bootloader (linked with
 linker/epuck-bootloader.gld):
 
   OUTPUT.hex   the application with its descriptor (entry: the reset slot
-               of its GOTO table), for the Aseba bootloader (asebacmd whex)
+               of its GOTO table), for the Aseba bootloader (`aseba flash`,
+               asebacmd whex); every instruction of the pages it covers is
+               written, erased ones as 0xFFFFFF, so that tools which fill
+               missing bytes with zeros (asebacmd) write what the
+               descriptor's CRC expects
   FACTORY.hex  the bootloader, the application and its descriptor, for the
                first installation through the factory Tiny Bootloader or a
                programmer
 
 The second form installs FACTORY.hex on a robot through its factory Tiny
-Bootloader (`epuck-image install --help` tells more).
-
-Options:
-  --help       show this text
-)";
+Bootloader (`epuck-image install --help` tells more).)";
 
 void write_file(const std::string &path, const std::string &text)
 {
@@ -48,9 +50,31 @@ void write_file(const std::string &path, const std::string &text)
         throw std::runtime_error(path + ": cannot be written");
 }
 
-aseba::flash::ProgramImage read_image(const std::string &path, uint32_t end)
+struct Files {
+    std::string application, bootloader, output, factory;
+};
+
+Files parse_command_line(int argc, char **argv)
 {
-    return aseba::flash::read_microchip_hex_file(path, end);
+    Files files;
+    CLI::App app(details, "epuck-image");
+    auto formatter = aseba::command_line::use_common_style(app);
+    formatter->set_usage(&app, usage);
+    app.footer(aseba::command_line::EXIT_STATUS_TEXT);
+    app.add_option("APPLICATION.hex", files.application, "the application, as XC16 links it")
+      ->required()
+      ->type_name("");
+    app.add_option("BOOTLOADER.hex", files.bootloader, "the Aseba bootloader, as XC16 links it")
+      ->required()
+      ->type_name("");
+    app.add_option("OUTPUT.hex", files.output, "the application image to write")
+      ->required()
+      ->type_name("");
+    app.add_option("FACTORY.hex", files.factory, "the factory image to write")
+      ->required()
+      ->type_name("");
+    aseba::command_line::parse_or_exit(app, argc, argv);
+    return files;
 }
 
 } // namespace
@@ -60,40 +84,39 @@ int main(int argc, char **argv)
     if (argc >= 2 && std::string(argv[1]) == "install")
         return aseba::flash::run_install_command(
           std::vector<std::string>(argv + 2, argv + argc), std::cout, std::cerr);
-    for (int i = 1; i < argc; i++) {
-        if (std::string(argv[i]) == "--help") {
-            std::cout << usage;
-            return 0;
-        }
-    }
-    if (argc != 5) {
-        std::cerr << usage;
-        return 2;
-    }
+    Files files = parse_command_line(argc, argv);
+    aseba::flash::ProgramImage application, bootloader;
     try {
-        auto application = read_image(argv[1], BOOT_DESCRIPTOR_ADDRESS);
-        auto bootloader = read_image(argv[2], BOOT_TINY_BASE);
+        application =
+          aseba::flash::read_microchip_hex_file(files.application, BOOT_DESCRIPTOR_ADDRESS);
+        bootloader = aseba::flash::read_microchip_hex_file(files.bootloader, BOOT_TINY_BASE);
         try {
             aseba::flash::add_application_descriptor(application);
         } catch (const aseba::flash::HexError &error) {
-            throw std::runtime_error(std::string(argv[1]) + ": " + error.what());
+            throw aseba::flash::HexError(files.application + ": " + error.what());
         }
         try {
             aseba::flash::check_bootloader_image(bootloader);
         } catch (const aseba::flash::HexError &error) {
-            throw std::runtime_error(std::string(argv[2]) + ": " + error.what());
+            throw aseba::flash::HexError(files.bootloader + ": " + error.what());
         }
-        // The application image carries only program flash: the Aseba
-        // bootloader cannot write configuration words.
+    } catch (const std::exception &error) {
+        std::cerr << "epuck-image: " << error.what() << "\n";
+        return aseba::command_line::EXIT_USAGE;
+    }
+    try {
+        // The application image carries only program flash (the Aseba
+        // bootloader cannot write configuration words), every page whole.
         aseba::flash::ProgramImage flashable;
         flashable.instructions = application.instructions;
-        write_file(argv[3], aseba::flash::write_microchip_hex(flashable));
+        write_file(files.output,
+                   aseba::flash::write_microchip_hex(aseba::flash::fill_pages(flashable)));
         write_file(
-          argv[4],
+          files.factory,
           aseba::flash::write_microchip_hex(aseba::flash::merge_images(bootloader, application)));
     } catch (const std::exception &error) {
         std::cerr << "epuck-image: " << error.what() << "\n";
-        return 1;
+        return aseba::command_line::EXIT_FAILED;
     }
-    return 0;
+    return aseba::command_line::EXIT_OK;
 }

@@ -3,6 +3,9 @@
 #include "tools/flash/hex_image.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iterator>
@@ -86,7 +89,12 @@ std::vector<uint8_t> record_bytes(std::string_view line, std::size_t number)
     return bytes;
 }
 
+// The line of the HEX file that gave each program instruction, to find
+// records that overlap.
+using LineOfInstruction = std::map<uint32_t, std::size_t>;
+
 void add_data(ProgramImage &image,
+              LineOfInstruction &line_of,
               uint32_t hex_address,
               const uint8_t *data,
               std::size_t count,
@@ -121,6 +129,11 @@ void add_data(ProgramImage &image,
                    hex_number(application_end) + ")");
         if (data[i + 3] != 0)
             fail(number, "non-zero phantom byte at PC address " + hex_number(pc));
+        // The last record would silently win: refuse the image instead.
+        if (auto [earlier, added] = line_of.emplace(pc, number); !added)
+            fail(number,
+                 "PC address " + hex_number(pc) + " was given already on line " +
+                   std::to_string(earlier->second) + ": records overlap");
         image.instructions[pc] =
           static_cast<uint32_t>(data[i] | (data[i + 1] << 8) | (data[i + 2] << 16));
     }
@@ -131,6 +144,7 @@ void add_data(ProgramImage &image,
 ProgramImage read_microchip_hex(std::string_view text, uint32_t application_end)
 {
     ProgramImage image;
+    LineOfInstruction line_of;
     uint32_t upper_address = 0;
     bool ended = false;
     std::size_t number = 0;
@@ -152,7 +166,8 @@ ProgramImage read_microchip_hex(std::string_view text, uint32_t application_end)
         const uint8_t *data = bytes.data() + 4;
         switch (bytes[3]) {
         case record_data:
-            add_data(image, upper_address << 16 | offset, data, count, application_end, number);
+            add_data(
+              image, line_of, upper_address << 16 | offset, data, count, application_end, number);
             break;
         case record_end_of_file:
             if (count != 0)
@@ -177,11 +192,16 @@ ProgramImage read_microchip_hex(std::string_view text, uint32_t application_end)
 
 ProgramImage read_microchip_hex_file(const std::string &path, uint32_t application_end)
 {
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored))
+        throw HexError(path + ": is a folder, not a HEX file");
     std::ifstream file(path, std::ios::binary);
     if (!file)
-        throw HexError(path + ": cannot be read");
+        throw HexError(path + ": cannot be read (" + std::strerror(errno) + ")");
     std::ostringstream text;
     text << file.rdbuf();
+    if (file.bad())
+        throw HexError(path + ": cannot be read (" + std::strerror(errno) + ")");
     try {
         return read_microchip_hex(text.str(), application_end);
     } catch (const HexError &error) {
@@ -189,19 +209,41 @@ ProgramImage read_microchip_hex_file(const std::string &path, uint32_t applicati
     }
 }
 
+namespace
+{
+
+uint32_t instruction_at(const ProgramImage &image, uint32_t pc)
+{
+    auto found = image.instructions.find(pc);
+    return found == image.instructions.end() ? erased_instruction : found->second;
+}
+
+// What the bootloader computes over [BOOT_CHECKED_START, end) once the image
+// is written (missing instructions erased).
+uint16_t application_crc(const ProgramImage &image, uint32_t end)
+{
+    uint16_t crc = 0;
+    for (uint32_t pc = BOOT_CHECKED_START; pc < end; pc += pc_units_per_instruction) {
+        uint32_t value = instruction_at(image, pc);
+        uint8_t bytes[3] = { static_cast<uint8_t>(value),
+                             static_cast<uint8_t>(value >> 8),
+                             static_cast<uint8_t>(value >> 16) };
+        crc = node_crc16(crc, bytes, 3);
+    }
+    return crc;
+}
+
+} // namespace
+
 void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> entry)
 {
-    auto instruction_at = [&](uint32_t pc) {
-        auto found = image.instructions.find(pc);
-        return found == image.instructions.end() ? erased_instruction : found->second;
-    };
     if (!image.instructions.empty() && image.instructions.begin()->first < BOOT_APPLICATION_START)
         throw HexError("PC address " + hex_number(image.instructions.begin()->first) +
                        " is below the application's start " + hex_number(BOOT_APPLICATION_START) +
                        ": rows 0-3 belong to the bootloader image (link the application with "
                        "linker/epuck-app.gld)");
     if (!entry.has_value()) {
-        if (instruction_at(BOOT_APPLICATION_ENTRY) >> 16 != BOOT_GOTO_OPCODE)
+        if (instruction_at(image, BOOT_APPLICATION_ENTRY) >> 16 != BOOT_GOTO_OPCODE)
             throw HexError("PC " + hex_number(BOOT_APPLICATION_ENTRY) +
                            " holds no GOTO: the application has no reset slot");
         entry = BOOT_APPLICATION_ENTRY;
@@ -218,14 +260,7 @@ void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> ent
         throw HexError("the entry " + hex_number(*entry) + " is not an even address in [" +
                        hex_number(BOOT_APPLICATION_START) + ", " +
                        hex_number(std::min<uint32_t>(end, BOOT_ENTRY_LIMIT)) + ")");
-    uint16_t crc = 0;
-    for (uint32_t pc = BOOT_CHECKED_START; pc < end; pc += pc_units_per_instruction) {
-        uint32_t value = instruction_at(pc);
-        uint8_t bytes[3] = { static_cast<uint8_t>(value),
-                             static_cast<uint8_t>(value >> 8),
-                             static_cast<uint8_t>(value >> 16) };
-        crc = node_crc16(crc, bytes, 3);
-    }
+    uint16_t crc = application_crc(image, end);
     uint32_t base = BOOT_DESCRIPTOR_ADDRESS;
     image.instructions[base + BOOT_DESCRIPTOR_MAGIC_INDEX * 2] = BOOT_DESCRIPTOR_MAGIC;
     image.instructions[base + BOOT_DESCRIPTOR_ENTRY_INDEX * 2] = *entry;
@@ -263,6 +298,54 @@ std::vector<Page> make_pages(const ProgramImage &image)
         pages.push_back(page);
     }
     return pages;
+}
+
+void check_application_image(const ProgramImage &image)
+{
+    auto descriptor = [&](uint32_t index) {
+        return instruction_at(image, BOOT_DESCRIPTOR_ADDRESS + index * pc_units_per_instruction);
+    };
+    if (descriptor(BOOT_DESCRIPTOR_MAGIC_INDEX) != BOOT_DESCRIPTOR_MAGIC)
+        throw HexError("no application descriptor at PC " + hex_number(BOOT_DESCRIPTOR_ADDRESS) +
+                       ", so the bootloader would never start this image (flash the application "
+                       "image that `make dspic30` writes, which has one)");
+    uint32_t entry = descriptor(BOOT_DESCRIPTOR_ENTRY_INDEX);
+    uint32_t end = descriptor(BOOT_DESCRIPTOR_END_INDEX);
+    uint32_t crc = descriptor(BOOT_DESCRIPTOR_CRC_INDEX);
+    // Where the pages the image writes end: beyond, the robot's flash keeps
+    // whatever it held, which no check here can know.
+    auto code_end = image.instructions.lower_bound(BOOT_DESCRIPTOR_ADDRESS);
+    uint32_t written_end = code_end == image.instructions.begin()
+                             ? BOOT_APPLICATION_START
+                             : (std::prev(code_end)->first / page_span + 1) * page_span;
+    if (end <= BOOT_CHECKED_START || end > written_end || end % pc_units_per_instruction != 0)
+        throw HexError("the descriptor's end " + hex_number(end) +
+                       " is not an even address within the image's code (" +
+                       hex_number(BOOT_CHECKED_START) + " to " + hex_number(written_end) + ")");
+    if (entry < BOOT_APPLICATION_START || entry >= end || entry >= BOOT_ENTRY_LIMIT ||
+        entry % pc_units_per_instruction != 0)
+        throw HexError("the descriptor's entry " + hex_number(entry) +
+                       " is not an even address in [" + hex_number(BOOT_APPLICATION_START) + ", " +
+                       hex_number(std::min<uint32_t>(end, BOOT_ENTRY_LIMIT)) + ")");
+    uint16_t computed = application_crc(image, end);
+    if (crc != computed)
+        throw HexError("the descriptor's CRC is " + hex_number(crc) +
+                       " but the image's data give " + hex_number(computed) +
+                       ": the bootloader would refuse it and the robots would stay in their "
+                       "bootloaders");
+}
+
+ProgramImage fill_pages(const ProgramImage &image)
+{
+    ProgramImage filled = image;
+    for (const Page &page : make_pages(image)) {
+        for (uint32_t i = 0; i < page_bytes / bytes_per_instruction; i++) {
+            const uint8_t *bytes = &page.bytes[i * bytes_per_instruction];
+            filled.instructions[page.number * page_span + i * pc_units_per_instruction] =
+              static_cast<uint32_t>(bytes[0] | bytes[1] << 8 | bytes[2] << 16);
+        }
+    }
+    return filled;
 }
 
 namespace

@@ -37,8 +37,9 @@ struct ProgramImage {
 
 // Reads `text`; throws HexError for a malformed record (syntax, checksum,
 // unknown type, a length or address that splits an instruction, a non-zero
-// phantom byte, no end-of-file record) or for program data outside
-// [0, application_end) (PC addresses).
+// phantom byte, no end-of-file record), for records that give the same
+// instruction twice, or for program data outside [0, application_end) (PC
+// addresses).
 ProgramImage read_microchip_hex(std::string_view text, uint32_t application_end);
 
 // Reads the HEX file at `path` as read_microchip_hex reads text; the what()
@@ -74,6 +75,18 @@ void add_application_descriptor(ProgramImage &image, std::optional<uint32_t> ent
 // the descriptor's CRC expects. Instructions below the first page are not
 // written (add_application_descriptor refuses such an image).
 std::vector<Page> make_pages(const ProgramImage &image);
+
+// Checks an application image as the bootloader will once it is written
+// (make_pages): the descriptor is there, its entry and end are in range, and
+// its CRC matches the instructions. Throws HexError saying what is wrong;
+// flashing tools call it before they take any robot out of service.
+void check_application_image(const ProgramImage &image);
+
+// `image` with every instruction of the pages make_pages writes present,
+// missing ones as erased (0xFFFFFF): written as HEX, it has no gaps, so a
+// tool that fills missing bytes with zeros (asebacmd whex) or skips pages
+// without data writes the same flash as make_pages.
+ProgramImage fill_pages(const ProgramImage &image);
 
 // `image` as Microchip's bin2hex writes Intel HEX: an extended linear
 // address record (type 04) before the first data record of every 64 KB of

@@ -6,7 +6,9 @@
 #include "tools/flash/install_command.hpp"
 
 #include <cstdio>
+#include <memory>
 
+#include "tools/command_line/command_line.hpp"
 #include "tools/flash/tiny_serial_link.hpp"
 
 extern "C" {
@@ -16,22 +18,17 @@ extern "C" {
 namespace aseba::flash
 {
 
-const char *const install_usage =
-  R"(usage: epuck-image install --port DEVICE [--id N] [--wait SECONDS] FACTORY.hex
+namespace
+{
 
-Installs FACTORY.hex (epuck-aseba-factory.hex: the Aseba bootloader, the
+const char *const usage =
+  "usage: epuck-image install --port DEVICE [--id N] [--wait SECONDS] FACTORY.hex";
+
+const char *const details =
+  R"(Installs FACTORY.hex (epuck-aseba-factory.hex: the Aseba bootloader, the
 application and its descriptor) through the e-puck's factory Tiny
 Bootloader, which listens for about 1 s after the robot's reset. Start the
 command, then press the robot's reset button when it asks.
-
-  --port DEVICE   the robot's serial device, such as /dev/rfcomm0 (Bluetooth)
-                  or a serial adapter's tty; opened at 115200 baud, raw 8N1
-  --id N          the robot number (0-65535) written at 0x017F36, in the Tiny
-                  Bootloader's first row; that row is rewritten at every
-                  installation, so give the robot's number to keep it
-                  (default 0)
-  --wait SECONDS  how long to wait for the reset (default 30)
-  --help          show this text
 
 The command sends 0xC1 every 0.25 s until the Tiny Bootloader answers, then
 every row from PC 0 up to the image's last one (instructions the file lacks
@@ -40,20 +37,17 @@ checksum, the row is sent again up to 3 times), then the row at 0x017F00,
 then the end marker (LED6 lights for about 2 s). As the factory uploaders
 do, row 0 gets GOTO 0x017F40 (the Tiny Bootloader) as its reset vector, and
 the Tiny Bootloader's exit at 0x017F38 gets a GOTO to the image's own reset
-target. Configuration words and EEPROM data in the file are not written.
+target. Configuration words and EEPROM data in the file are not written.)";
 
-Exit status: 0 when every row was acknowledged, 1 when the installation
+const char *const exit_statuses =
+  R"(Exit status: 0 when every row was acknowledged, 1 when the installation
 failed (install again: once row 0 is written, every reset enters the Tiny
-Bootloader), 2 for a usage error.
-)";
-
-namespace
-{
+Bootloader), 2 on bad usage or a FACTORY.hex that cannot be read or used.)";
 
 constexpr double default_wait_seconds = 30.0;
 constexpr double longest_wait_seconds = 3600.0;
 constexpr double milliseconds_per_second = 1000.0;
-constexpr unsigned long highest_robot_id = 0xFFFF;
+constexpr unsigned highest_robot_id = 0xFFFF;
 constexpr std::size_t progress_steps = 10; // progress lines per installation
 
 struct InstallOptions {
@@ -63,7 +57,8 @@ struct InstallOptions {
     std::string file;
 };
 
-struct UsageError : std::runtime_error {
+// A FACTORY.hex that cannot be read or used: exit status 2.
+struct InputError : std::runtime_error {
     using std::runtime_error::runtime_error;
 };
 
@@ -74,64 +69,37 @@ std::string hex(uint32_t value)
     return text;
 }
 
-uint16_t parse_robot_id(const std::string &text)
+// The command's parser, filling `options`.
+std::unique_ptr<CLI::App> make_parser(InstallOptions &options)
 {
-    std::size_t used = 0;
-    unsigned long value = 0;
-    try {
-        value = std::stoul(text, &used, 0);
-    } catch (const std::exception &) {
-        used = 0;
-    }
-    if (used != text.size() || text.empty() || text[0] == '-' || value > highest_robot_id)
-        throw UsageError("--id takes a number from 0 to 65535, not '" + text + "'");
-    return static_cast<uint16_t>(value);
-}
-
-double parse_wait(const std::string &text)
-{
-    std::size_t used = 0;
-    double value = 0;
-    try {
-        value = std::stod(text, &used);
-    } catch (const std::exception &) {
-        used = 0;
-    }
-    if (used != text.size() || !(value > 0) || value > longest_wait_seconds)
-        throw UsageError("--wait takes seconds, more than 0 and at most 3600, not '" + text + "'");
-    return value;
-}
-
-InstallOptions parse_options(const std::vector<std::string> &arguments)
-{
-    InstallOptions options;
-    bool port_given = false;
-    for (std::size_t i = 0; i < arguments.size(); i++) {
-        const std::string &argument = arguments[i];
-        bool takes_value = argument == "--port" || argument == "--id" || argument == "--wait";
-        if (takes_value && i + 1 == arguments.size())
-            throw UsageError(argument + " needs a value");
-        if (argument == "--port") {
-            options.port = arguments[++i];
-            port_given = true;
-        } else if (argument == "--id") {
-            options.robot_id = parse_robot_id(arguments[++i]);
-        } else if (argument == "--wait") {
-            options.wait_seconds = parse_wait(arguments[++i]);
-        } else if (argument.rfind("-", 0) == 0) {
-            throw UsageError("unknown option '" + argument + "'");
-        } else if (!options.file.empty()) {
-            throw UsageError("one FACTORY.hex only ('" + options.file + "', then '" + argument +
-                             "')");
-        } else {
-            options.file = argument;
-        }
-    }
-    if (!port_given || options.port.empty())
-        throw UsageError("--port DEVICE is required");
-    if (options.file.empty())
-        throw UsageError("FACTORY.hex is missing");
-    return options;
+    auto app = std::make_unique<CLI::App>(details, "epuck-image install");
+    auto formatter = command_line::use_common_style(*app);
+    formatter->set_usage(app.get(), usage);
+    app->footer(exit_statuses);
+    app
+      ->add_option("--port",
+                   options.port,
+                   "the robot's serial device, such as /dev/rfcomm0 (Bluetooth) or a\n"
+                   "serial adapter's tty; opened at 115200 baud, raw 8N1")
+      ->required()
+      ->type_name("DEVICE");
+    app
+      ->add_option("--id",
+                   options.robot_id,
+                   "the robot number (0-65535) written at 0x017F36, in the Tiny\n"
+                   "Bootloader's first row; that row is rewritten at every\n"
+                   "installation, so give the robot's number to keep it (default 0)")
+      ->check(CLI::Range(0u, highest_robot_id).description(""))
+      ->type_name("N");
+    app
+      ->add_option("--wait",
+                   options.wait_seconds,
+                   "how long to wait for the reset, more than 0 and at most 3600\n"
+                   "(default 30)")
+      ->check(CLI::Range(0.001, longest_wait_seconds).description(""))
+      ->type_name("SECONDS");
+    app->add_option("FACTORY.hex", options.file, "the factory image")->required()->type_name("");
+    return app;
 }
 
 // The target of the image's reset GOTO (PC 0 and 2).
@@ -155,12 +123,12 @@ int install(const InstallOptions &options, std::ostream &out)
         std::string where = error.what();
         if (where.rfind(options.file, 0) != 0)
             where = options.file + ": " + where;
-        throw std::runtime_error(where + " (the factory image is epuck-aseba-factory.hex)");
+        throw InputError(where + " (the factory image is epuck-aseba-factory.hex)");
     }
     uint32_t target = reset_target(image);
     if (target >= tiny_bootloader_base)
-        throw std::runtime_error(options.file + ": its reset GOTO leads to " + hex(target) +
-                                 ", into the Tiny Bootloader itself, not to an image of ours");
+        throw InputError(options.file + ": its reset GOTO leads to " + hex(target) +
+                         ", into the Tiny Bootloader itself, not to an image of ours");
 
     auto link = open_tiny_serial_link(options.port);
     TinyUploadSettings settings;
@@ -210,20 +178,28 @@ int run_install_command(const std::vector<std::string> &arguments,
                         std::ostream &out,
                         std::ostream &err)
 {
-    for (const std::string &argument : arguments) {
-        if (argument == "--help") {
-            out << install_usage;
-            return 0;
-        }
+    InstallOptions options;
+    std::unique_ptr<CLI::App> parser = make_parser(options);
+    try {
+        // CLI11 takes the arguments last first.
+        std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());
+        parser->parse(reversed);
+    } catch (const CLI::CallForHelp &) {
+        out << parser->help();
+        return command_line::EXIT_OK;
+    } catch (const CLI::ParseError &error) {
+        err << "epuck-image install: " << error.what()
+            << "\n(epuck-image install --help for usage)\n";
+        return command_line::EXIT_USAGE;
     }
     try {
-        return install(parse_options(arguments), out);
-    } catch (const UsageError &error) {
-        err << "epuck-image install: " << error.what() << "\n\n" << install_usage;
-        return 2;
+        return install(options, out);
+    } catch (const InputError &error) {
+        err << "epuck-image install: " << error.what() << "\n";
+        return command_line::EXIT_USAGE;
     } catch (const std::exception &error) {
         err << "epuck-image install: " << error.what() << "\n";
-        return 1;
+        return command_line::EXIT_FAILED;
     }
 }
 

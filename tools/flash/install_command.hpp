@@ -11,13 +11,11 @@
 namespace aseba::flash
 {
 
-// The command's --help text.
-extern const char *const install_usage;
-
-// Runs the command with `arguments` (those after `install`): progress and
-// the summary on `out`, errors on `err`. Returns the exit status: 0 when
-// every row was acknowledged, 1 when the installation failed, 2 for a usage
-// error.
+// Runs the command with `arguments` (those after `install`): its help or
+// progress and the summary on `out`, errors on `err`. Returns the exit
+// status: 0 when every row was acknowledged (or for --help), 1 when the
+// installation failed, 2 for a usage error or a FACTORY.hex that cannot be
+// read or used.
 int run_install_command(const std::vector<std::string> &arguments,
                         std::ostream &out,
                         std::ostream &err);

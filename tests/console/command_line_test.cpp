@@ -1,0 +1,160 @@
+// The command lines of every program (asebac, aseba, epuck-emu,
+// epuck-image), run as a user runs them: one style of help and errors, and
+// one set of exit statuses (0 success, 1 the work failed, 2 bad usage or an
+// input file that cannot be read or used). Inputs that once crashed the
+// programs (a deeply nested project) or were blamed on the wrong file (a
+// target description) are among them.
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "console_support.hpp"
+
+using namespace console_test;
+
+namespace
+{
+
+const char *const PROGRAMS[] = { "asebac", "aseba", "epuck-emu", "epuck-image" };
+
+bool contains(const std::string &text, const std::string &part)
+{
+    return text.find(part) != std::string::npos;
+}
+
+// An .aesl project whose node holds `depth` nested elements.
+std::string deep_project(int depth)
+{
+    std::string open, close;
+    for (int i = 0; i < depth; i++) {
+        open += "<a>";
+        close += "</a>";
+    }
+    return "<!DOCTYPE aesl-source>\n<network>\n<node name=\"e-puck\" nodeId=\"1\">" + open + close +
+           "</node>\n</network>\n";
+}
+
+} // namespace
+
+TEST(CommandLines, HelpStartsWithUsageAndExitsZero)
+{
+    ScratchFolder scratch;
+    for (const char *program : PROGRAMS) {
+        CommandResult help = run_program(program, { "--help" }, scratch.path());
+        EXPECT_EQ(help.exit_code, 0) << program << help.err;
+        EXPECT_EQ(help.out.rfind(std::string("usage: ") + program, 0), 0u) << help.out;
+        EXPECT_TRUE(contains(help.out, "Exit status: 0")) << program << "\n" << help.out;
+    }
+    CommandResult install = run_program("epuck-image", { "install", "--help" }, scratch.path());
+    EXPECT_EQ(install.exit_code, 0);
+    EXPECT_EQ(install.out.rfind("usage: epuck-image install --port DEVICE", 0), 0u) << install.out;
+}
+
+TEST(CommandLines, AnUnknownOptionIsAUsageErrorNamedAsSuch)
+{
+    ScratchFolder scratch;
+    for (const char *program : PROGRAMS) {
+        // epuck-image's four files are given, so only the option is wrong.
+        CommandResult bogus =
+          run_program(program, { "--bogus", "a.hex", "b.hex", "c.hex", "d.hex" }, scratch.path());
+        EXPECT_EQ(bogus.exit_code, 2) << program;
+        EXPECT_TRUE(contains(bogus.err, std::string(program) + ": ")) << bogus.err;
+        EXPECT_TRUE(contains(bogus.err, "--bogus")) << program << ": " << bogus.err;
+        EXPECT_TRUE(contains(bogus.err, "--help for usage")) << program << ": " << bogus.err;
+        EXPECT_FALSE(contains(bogus.err, "cannot be read")) << program << ": " << bogus.err;
+    }
+    CommandResult range = run_program("epuck-emu", { "--robots", "0" }, scratch.path());
+    EXPECT_EQ(range.exit_code, 2);
+    EXPECT_TRUE(contains(range.err, "--robots")) << range.err;
+}
+
+// An input file that cannot be read is status 2 from every program (it was
+// 2 from asebac and 1 from aseba), before any network is touched.
+TEST(CommandLines, AnUnreadableInputFileIsStatusTwoEverywhere)
+{
+    ScratchFolder scratch;
+    const std::string missing = scratch.path() + "/missing.aesl";
+    struct Run {
+        const char *program;
+        std::vector<std::string> arguments;
+    };
+    // Port 1: nobody listens there, so a network failure would be status 1.
+    const Run runs[] = {
+        { "asebac", { missing } },
+        { "aseba", { "-t", "tcp:127.0.0.1;1", "load", missing } },
+        { "aseba", { "-t", "tcp:127.0.0.1;1", "compile", missing } },
+        { "aseba", { "-t", "tcp:127.0.0.1;1", "vars", "-p", missing } },
+        { "aseba", { "-t", "tcp:127.0.0.1;1", "flash", scratch.path() + "/missing.hex" } },
+        { "epuck-emu", { "--load", missing, "--port", "1" } },
+        { "epuck-image", { missing, missing, missing, missing } },
+    };
+    for (const Run &run : runs) {
+        CommandResult result = run_program(run.program, run.arguments, scratch.path());
+        EXPECT_EQ(result.exit_code, 2) << run.program << " " << run.arguments.back() << "\n"
+                                       << result.err;
+        EXPECT_TRUE(contains(result.err, "missing.")) << run.program << ": " << result.err;
+    }
+}
+
+// 50,000 nested elements crashed asebac and epuck-emu --load (the
+// hand-written XML reader recursed per element).
+TEST(CommandLines, ADeeplyNestedProjectIsNoCrash)
+{
+    ScratchFolder scratch;
+    std::string deep = scratch.write("deep.aesl", deep_project(50000));
+    CommandResult compiled = run_program("asebac", { deep }, scratch.path());
+    EXPECT_GE(compiled.exit_code, 0) << compiled.err; // not killed by a signal
+    EXPECT_LE(compiled.exit_code, 2) << compiled.err;
+    CommandResult emulated = run_program(
+      "epuck-emu",
+      { "--load", deep, "--duration", "0.1", "--port", std::to_string(find_free_port()) },
+      scratch.path());
+    EXPECT_GE(emulated.exit_code, 0) << emulated.err;
+    EXPECT_LE(emulated.exit_code, 2) << emulated.err;
+
+    std::string unclosed =
+      scratch.write("unclosed.aesl", "<network>\n<node name=\"e-puck\"><a><a>");
+    CommandResult refused = run_program("asebac", { unclosed }, scratch.path());
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_TRUE(contains(refused.err, "unclosed.aesl:2:")) << refused.err;
+}
+
+// A target description that cannot be right is the target file's fault:
+// named, status 2 (it was blamed on the script, status 1).
+TEST(CommandLines, AWrongTargetDescriptionNamesItsFile)
+{
+    ScratchFolder scratch;
+    std::string target = scratch.write("tiny.json", R"({
+        "name": "tiny", "bytecode_size": 100, "variables_size": 4, "stack_size": 16,
+        "variables": [{"name": "id"}, {"name": "source"}, {"name": "args", "size": 32}]
+    })");
+    std::string script = scratch.write("script.aseba", "var x = 1\n");
+    CommandResult result = run_program("asebac", { "--target", target, script }, scratch.path());
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_TRUE(contains(result.err,
+                         "tiny.json: variables: the named variables take 34 words, "
+                         "more than variables_size (4)"))
+      << result.err;
+    EXPECT_FALSE(contains(result.err, "script.aseba")) << result.err;
+
+    std::string twice = scratch.write("twice.json", R"({
+        "name": "twice", "bytecode_size": 100, "variables_size": 40, "stack_size": 16,
+        "local_events": [{"name": "tick"}, {"name": "tick"}]
+    })");
+    result = run_program("asebac", { "--target", twice, script }, scratch.path());
+    EXPECT_EQ(result.exit_code, 2);
+    EXPECT_TRUE(contains(result.err, "twice.json: local_events[1]: the name tick is used twice"))
+      << result.err;
+}
+
+// A compile error is the work failing: status 1.
+TEST(CommandLines, ACompileErrorIsStatusOne)
+{
+    ScratchFolder scratch;
+    std::string script = scratch.write("wrong.aseba", "x = 1\n");
+    CommandResult result = run_program("asebac", { script }, scratch.path());
+    EXPECT_EQ(result.exit_code, 1);
+    EXPECT_TRUE(contains(result.err, "wrong.aseba:1:")) << result.err;
+}

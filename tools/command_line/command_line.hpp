@@ -1,0 +1,115 @@
+// The command lines of every program of the project (asebac, aseba,
+// epuck-emu, epuck-image) over CLI11, in one style: help that starts with
+// hand-written usage lines, then what the program or command does, then the
+// options CLI11 knows (so the list cannot drift from the parser), and one
+// set of exit statuses.
+
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <string>
+
+namespace aseba::command_line
+{
+
+// Exit statuses of every program.
+constexpr int EXIT_OK = 0;
+constexpr int EXIT_FAILED = 1; // the work failed: a compile error, a node, the network
+constexpr int EXIT_USAGE = 2;  // a bad command line, or an input file that cannot be used
+
+// The line every --help ends with.
+inline constexpr const char *EXIT_STATUS_TEXT =
+  "Exit status: 0 on success, 1 when the work fails (a compile error, a node or\n"
+  "the network), 2 on bad usage or an input file that cannot be read or used.";
+
+// Help as: usage lines, a blank line, the description, the options.
+class HelpFormatter : public CLI::Formatter
+{
+  public:
+    HelpFormatter()
+    {
+        label("Positionals", "Arguments");
+    }
+
+    // The usage lines of `app` ("usage: PROGRAM ..."), shown first, and what
+    // it does in some sentences (else its one-line description).
+    void set_usage(const CLI::App *app, std::string usage, std::string details = "")
+    {
+        usages_[app] = std::move(usage);
+        if (!details.empty())
+            details_[app] = std::move(details);
+    }
+
+    std::string make_usage(const CLI::App *app, std::string name) const override
+    {
+        auto found = usages_.find(app);
+        if (found == usages_.end())
+            return CLI::Formatter::make_usage(app, name);
+        return found->second + "\n";
+    }
+
+    std::string make_help(const CLI::App *app,
+                          std::string name,
+                          CLI::AppFormatMode mode) const override
+    {
+        if (mode == CLI::AppFormatMode::Sub)
+            return make_expanded(app);
+        std::string help = make_usage(app, name);
+        auto details = details_.find(app);
+        std::string about = details != details_.end() ? details->second : app->get_description();
+        if (!about.empty())
+            help += "\n" + about + "\n";
+        // CLI11's lists start with a blank line.
+        help += make_positionals(app) + make_groups(app, mode) + make_subcommands(app, mode);
+        if (!app->get_footer().empty())
+            help += "\n" + app->get_footer() + "\n";
+        return help;
+    }
+
+  private:
+    std::map<const CLI::App *, std::string> usages_;
+    std::map<const CLI::App *, std::string> details_;
+};
+
+// Gives `app` (and the subcommands created after) the common formatter and
+// the -h/--help flag; returns the formatter for set_usage.
+inline std::shared_ptr<HelpFormatter> use_common_style(CLI::App &app)
+{
+    auto formatter = std::make_shared<HelpFormatter>();
+    app.formatter(formatter);
+    app.set_help_flag("-h,--help", "show this help and exit");
+    app.option_defaults()->always_capture_default(false);
+    return formatter;
+}
+
+// "PROGRAM: MESSAGE" and the hint to --help, on standard error.
+inline void print_usage_error(const std::string &program, const std::string &message)
+{
+    std::cerr << program << ": " << message << "\n(" << program << " --help for usage)\n";
+}
+
+// Parses `argv`; prints the help and exits 0 when asked, prints the error and
+// exits EXIT_USAGE on bad usage. Returns only when the command line is good.
+inline void parse_or_exit(CLI::App &app, int argc, char **argv)
+{
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::CallForHelp &) {
+        std::cout << app.help();
+        std::exit(EXIT_OK);
+    } catch (const CLI::CallForAllHelp &) {
+        std::cout << app.help("", CLI::AppFormatMode::All);
+        std::exit(EXIT_OK);
+    } catch (const CLI::ParseError &error) {
+        print_usage_error(app.get_name(), error.what());
+        std::exit(EXIT_USAGE);
+    }
+}
+
+} // namespace aseba::command_line
