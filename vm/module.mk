@@ -8,4 +8,4 @@ EXTRA_CFLAGS_vm/vm := -DVM_USE_COMPUTED_GOTO=1
 
 # The node: protocol 5 on any byte stream, around the VM (protocol.md).
 LIBRARIES += aseba_node
-aseba_node_SOURCES := vm/node.c vm/node_send.c vm/node_description.c
+aseba_node_SOURCES := vm/node.c vm/node_send.c vm/node_description.c vm/node_crc.c
