@@ -16,7 +16,7 @@
 
 // sin over a quarter turn, 129 entries: SINE[i] ~ 32767 sin(pi i / 256),
 // with upstream's corrections, so 128 steps of 128 angle units each. The
-// table is kept as its second differences, 64 bytes instead of 258: in each
+// table is kept as its second differences, 80 bytes instead of 258: in each
 // segment of 32 entries, entry 32s is SINE_START[s] and rises by
 // SINE_RISE[s] to the next; each rise differs from the one before by a
 // nibble of SINE_BENDS less 8 (entry k's in the low nibble of byte k / 2
@@ -27,8 +27,9 @@
 #define NIBBLE_BITS       4
 #define NIBBLE_MASK       0xF
 #define NIBBLE_BIAS       8
-static const uint16_t SINE_START[4] = { 0, 12540, 23171, 30274 };
-static const uint16_t SINE_RISE[4] = { 403, 371, 282, 151 };
+#define SINE_SEGMENTS     4 // of 32 entries: 128 steps
+static const uint16_t SINE_START[SINE_SEGMENTS] = { 0, 12540, 23171, 30274 };
+static const uint16_t SINE_RISE[SINE_SEGMENTS] = { 403, 371, 282, 151 };
 static const uint8_t SINE_BENDS[64] = {
     0xA6, 0x96, 0x87, 0x87, 0x97, 0x95, 0x67, 0x78, 0x77, 0x86, 0x76, 0x57, 0x68, 0x57, 0x48, 0x68,
     0x75, 0x75, 0x65, 0x66, 0x74, 0x65, 0x55, 0x56, 0x65, 0x64, 0x64, 0x54, 0x55, 0x45, 0x45, 0x36,
