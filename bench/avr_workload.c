@@ -58,7 +58,7 @@ static void ignore_error(void *context, uint16_t pc, const char *message)
 
 static const vm_callbacks callbacks = { ignore_emit,  ignore_state, ignore_pc,
                                         ignore_array, ignore_pc,    ignore_error };
-static const vm_native_table no_natives = { NULL, 0 };
+static const vm_native_table no_natives = { NULL, 0, NULL };
 
 int main(void)
 {

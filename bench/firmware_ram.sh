@@ -11,12 +11,12 @@ set -euo pipefail
 out=$1/bench-ram
 mkdir -p "$out"
 flags=(-std=gnu99 -Os -ffreestanding -mmcu=atmega1284p -I. -Ivm -Inative_functions
-       -DDSPIC30_SIMULATED_REGISTERS '-DVM_TARGET_CONFIG="firmware/epuck_config.h"')
+       -DDSPIC30_SIMULATED_REGISTERS '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"')
 
 sources=()
 # (MAKEFLAGS emptied: run from make, the inner make must not look for its jobs.)
 for source in $(MAKEFLAGS= make -s --no-print-directory sources-DSPIC30_APPLICATION); do
-    [[ $source == *_dspic30.c && $source == native_functions/* ]] && continue
+    [[ $source == hal/dspic30/dspic30_dsp_kernel.c ]] && continue
     sources+=("$source")
 done
 sources+=(native_functions/nat_dsp_kernel.c bench/ram_image.c)

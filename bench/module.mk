@@ -41,7 +41,7 @@ avr-step-counter_LDLIBS := -lsimavr
 # a linked 16-bit image (bench/firmware_ram.sh; `make bench` gives its parts).
 .PHONY: firmware-ram
 firmware-ram: | $(DEPS_STAMP)
-	@bench/firmware_ram.sh $(BUILD) | awk '$$1 == "total" { \
+	@ram=$$(bench/firmware_ram.sh $(BUILD)) && echo "$$ram" | awk '$$1 == "total" { \
 	    printf "== e-puck firmware, linked 16-bit image (avr-gcc): %d bytes of RAM\n", $$2 }'
 cross-check: firmware-ram
 

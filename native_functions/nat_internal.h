@@ -51,20 +51,27 @@ void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_o
 
 // --- description records -----------------------------------------------------
 
-// Parameter sizes: > 0 fixed, < 0 template id (protocol.md §5.5).
-#define TEMPLATE_N -1
-#define TEMPLATE_M -2
-#define SCALAR     1
+// Parts of a packed description (vm.h): the documentation's mark, and a
+// parameter of size N, M or P (templates -1, -2, -3) or 1, 2, 4 or 5 words,
+// as P(N, W_DEST) (a size byte is the size plus VM_NATIVE_SIZE_BIAS).
+#define DOC           "\x1F"
+#define SIZE_P        "\x0D"
+#define SIZE_M        "\x0E"
+#define SIZE_N        "\x0F"
+#define SIZE_1        "\x11"
+#define SIZE_2        "\x12"
+#define SIZE_4        "\x14"
+#define SIZE_5        "\x15"
+#define P(size, name) SIZE_##size name
 
-#define COUNT_OF(array) ((uint8_t)(sizeof(array) / sizeof((array)[0])))
-
-// One native's record: its function is `nat_<identifier>_function`; natives
-// with the same parameters share one array of them.
-#define NATIVE(identifier, name, description, stack_words, parameters)                             \
-    const vm_native nat_##identifier = {                                                           \
-        name,        description,          nat_##identifier##_function,                            \
-        stack_words, COUNT_OF(parameters), parameters                                              \
-    }
+// One native's record: its function is `nat_<identifier>_function`, its
+// description name, documentation and parameters (P(...) P(...)), its
+// stack words those of bytecode.md §9: parameters + size-0 parameters +
+// distinct templates (the tests check them for every entry).
+#define NATIVE(identifier, stack_words, name, documentation, parameters)                           \
+    const vm_native nat_##identifier = { nat_##identifier##_function,                              \
+                                         stack_words,                                              \
+                                         name DOC documentation parameters }
 
 // nat_math.c
 void nat_math_copy_function(vm_state *vm, const int16_t *arguments);

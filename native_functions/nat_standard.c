@@ -1,145 +1,158 @@
 // Descriptions of the standard natives: names, documentation strings and
 // parameters exactly as upstream sends them (language.md §13.1), so that
 // our nodes describe themselves like upstream ones and the compiler numbers
-// them the same way.
-//
-// stack_words = parameters + size-0 parameters + distinct templates
-// (bytecode.md §9); the tests check it for every entry.
+// them the same way. Packed (vm.h): the words they share are one byte each
+// (nat_words.h), and the dictionary of those words is here.
 
 #include "nat_internal.h"
 #include "nat_standard.h"
+#include "nat_words.h"
 
-// Parameter lists, each shared by the natives that have it.
-static const vm_native_parameter dest_src[] = { { TEMPLATE_N, "dest" }, { TEMPLATE_N, "src" } };
-static const vm_native_parameter dest_value[] = { { TEMPLATE_N, "dest" }, { SCALAR, "value" } };
-static const vm_native_parameter dest_src_scalar[] = { { TEMPLATE_N, "dest" },
-                                                       { TEMPLATE_N, "src" },
-                                                       { SCALAR, "scalar" } };
-static const vm_native_parameter dest_src1_src2[] = { { TEMPLATE_N, "dest" },
-                                                      { TEMPLATE_N, "src1" },
-                                                      { TEMPLATE_N, "src2" } };
-static const vm_native_parameter dest_src_low_high[] = { { TEMPLATE_N, "dest" },
-                                                         { TEMPLATE_N, "src" },
-                                                         { TEMPLATE_N, "low" },
-                                                         { TEMPLATE_N, "high" } };
-static const vm_native_parameter dot_parameters[] = { { SCALAR, "dest" },
-                                                      { TEMPLATE_N, "src1" },
-                                                      { TEMPLATE_N, "src2" },
-                                                      { SCALAR, "shift" } };
-static const vm_native_parameter stat_parameters[] = { { TEMPLATE_N, "src" },
-                                                       { SCALAR, "min" },
-                                                       { SCALAR, "max" },
-                                                       { SCALAR, "mean" } };
-static const vm_native_parameter argbounds_parameters[] = { { TEMPLATE_N, "src" },
-                                                            { SCALAR, "argmin" },
-                                                            { SCALAR, "argmax" } };
-static const vm_native_parameter array[] = { { TEMPLATE_N, "array" } };
-static const vm_native_parameter dest_a_b_c[] = { { TEMPLATE_N, "dest" },
-                                                  { TEMPLATE_N, "a" },
-                                                  { TEMPLATE_N, "b" },
-                                                  { TEMPLATE_N, "c" } };
-static const vm_native_parameter dest_y_x[] = { { TEMPLATE_N, "dest" },
-                                                { TEMPLATE_N, "y" },
-                                                { TEMPLATE_N, "x" } };
-static const vm_native_parameter dest_x[] = { { TEMPLATE_N, "dest" }, { TEMPLATE_N, "x" } };
-static const vm_native_parameter rot2_parameters[] = { { 2, "dest" }, { 2, "v" }, { SCALAR, "a" } };
-static const vm_native_parameter dest[] = { { TEMPLATE_N, "dest" } };
-static const vm_native_parameter deque_size[] = { { TEMPLATE_N, "deque" }, { SCALAR, "size" } };
-static const vm_native_parameter deque_dest_index[] = { { TEMPLATE_N, "deque" },
-                                                        { TEMPLATE_M, "dest" },
-                                                        { SCALAR, "index" } };
-static const vm_native_parameter deque_src_index[] = { { TEMPLATE_N, "deque" },
-                                                       { TEMPLATE_M, "src" },
-                                                       { SCALAR, "index" } };
-static const vm_native_parameter deque_index_len[] = { { TEMPLATE_N, "deque" },
-                                                       { SCALAR, "index" },
-                                                       { SCALAR, "len" } };
-static const vm_native_parameter deque_src[] = { { TEMPLATE_N, "deque" }, { TEMPLATE_M, "src" } };
-static const vm_native_parameter deque_dest[] = { { TEMPLATE_N, "deque" }, { TEMPLATE_M, "dest" } };
+// The words of nat_words.h, in code order; the literal's own NUL ends the
+// last word twice.
+#define NAT_WORD_TEXT(name, code, text) text "\0"
+const char nat_words[] = NAT_WORD_LIST(NAT_WORD_TEXT);
+#undef NAT_WORD_TEXT
 
-NATIVE(math_copy, "math.copy", "copies src to dest element by element", 3, dest_src);
-NATIVE(math_fill, "math.fill", "fills dest with constant value", 3, dest_value);
+NATIVE(math_copy,
+       3,
+       W_MATH "copy",
+       "copies " W_SRC W_TO W_DEST W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC));
+NATIVE(math_fill,
+       3,
+       W_MATH W_FILL,
+       W_FILL "s " W_DEST " with constant " W_VALUE,
+       P(N, W_DEST) P(1, W_VALUE));
 NATIVE(math_addscalar,
-       "math.addscalar",
-       "add scalar to each element of src and store result to dest",
        4,
-       dest_src_scalar);
+       W_MATH "add" W_SCALAR,
+       "add " W_SCALAR W_TO "each" W_ELEMENT W_OF W_SRC W_AND "store result" W_TO W_DEST,
+       P(N, W_DEST) P(N, W_SRC) P(1, W_SCALAR));
 NATIVE(math_add,
-       "math.add",
-       "adds src1 and src2, write to dest, element by element",
        4,
-       dest_src1_src2);
+       W_MATH "add",
+       "adds " W_SRC "1" W_AND W_SRC "2, write" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
 NATIVE(math_sub,
-       "math.sub",
-       "substracts src2 from src1 to dest, element by element",
        4,
-       dest_src1_src2);
+       W_MATH "sub",
+       "substracts " W_SRC "2" W_FROM W_SRC "1" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
 NATIVE(math_mul,
-       "math.mul",
-       "multiplies src1 and src2 to dest, element by element",
        4,
-       dest_src1_src2);
-NATIVE(math_div, "math.div", "divides src1 by src2 to dest, element by element", 4, dest_src1_src2);
+       W_MATH "mul",
+       "multiplies " W_SRC "1" W_AND W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+NATIVE(math_div,
+       4,
+       W_MATH "div",
+       "divides " W_SRC "1 by " W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
 NATIVE(math_min,
-       "math.min",
-       "writes the minimum of src1 and src2 to dest, element by element",
        4,
-       dest_src1_src2);
+       W_MATH "min",
+       "writes the minimum" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
 NATIVE(math_max,
-       "math.max",
-       "writes the maximum of src1 and src2 to dest, element by element",
        4,
-       dest_src1_src2);
+       W_MATH "max",
+       "writes the maximum" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
 NATIVE(math_clamp,
-       "math.clamp",
-       "clamp src to low/high bounds into dest, element by element",
        5,
-       dest_src_low_high);
+       W_MATH "clamp",
+       "clamp " W_SRC W_TO "low/high bounds into " W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC) P(N, "low") P(N, "high"));
 NATIVE(math_dot,
-       "math.dot",
-       "writes the dot product of src1 and src2 to dest, after a shift",
        5,
-       dot_parameters);
-NATIVE(math_stat, "math.stat", "performs statistics on src", 5, stat_parameters);
+       W_MATH "dot",
+       "writes the dot product" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST ", after a " W_SHIFT,
+       P(1, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2") P(1, W_SHIFT));
+NATIVE(math_stat,
+       5,
+       W_MATH "stat",
+       W_PERFORMS "statistics on " W_SRC,
+       P(N, W_SRC) P(1, "min") P(1, "max") P(1, "mean"));
 NATIVE(math_argbounds,
-       "math.argbounds",
-       "get the indices (argmin, argmax) of the limit values of src",
        4,
-       argbounds_parameters);
-NATIVE(math_sort, "math.sort", "sort array in place", 2, array);
+       W_MATH "argbounds",
+       "get the indices (argmin, argmax)" W_OF "the limit " W_VALUE "s" W_OF W_SRC,
+       P(N, W_SRC) P(1, "argmin") P(1, "argmax"));
+NATIVE(math_sort, 2, W_MATH "sort", "sort " W_ARRAY " in place", P(N, W_ARRAY));
 NATIVE(math_muldiv,
-       "math.muldiv",
-       "performs dest = (a*b)/c in 32 bits element by element",
        5,
-       dest_a_b_c);
-NATIVE(math_atan2, "math.atan2", "performs dest = atan2(y,x) element by element", 4, dest_y_x);
-NATIVE(math_sin, "math.sin", "performs dest = sin(x) element by element", 3, dest_x);
-NATIVE(math_cos, "math.cos", "performs dest = cos(x) element by element", 3, dest_x);
-NATIVE(math_rot2, "math.rot2", "rotates v of angle a to dest", 3, rot2_parameters);
-NATIVE(math_sqrt, "math.sqrt", "performs dest = sqrt(x) element by element", 3, dest_x);
-NATIVE(math_rand, "math.rand", "fill array with random values", 2, dest);
-NATIVE(deque_size, "deque.size", "report size of dest", 3, deque_size);
-NATIVE(deque_get, "deque.get", "fill dest from deque at index", 5, deque_dest_index);
-NATIVE(deque_set, "deque.set", "copies src to deque at index", 5, deque_src_index);
+       W_MATH "muldiv",
+       W_PERFORMS W_DEST " = (a*b)/c in 32 bits" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "a") P(N, "b") P(N, "c"));
+NATIVE(math_atan2,
+       4,
+       W_MATH "atan2",
+       W_PERFORMS W_DEST " = atan2(y,x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "y") P(N, "x"));
+NATIVE(math_sin,
+       3,
+       W_MATH "sin",
+       W_PERFORMS W_DEST " = sin(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+NATIVE(math_cos,
+       3,
+       W_MATH "cos",
+       W_PERFORMS W_DEST " = cos(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+NATIVE(math_rot2,
+       3,
+       W_MATH "rot2",
+       "rotates v" W_OF "angle a" W_TO W_DEST,
+       P(2, W_DEST) P(2, "v") P(1, "a"));
+NATIVE(math_sqrt,
+       3,
+       W_MATH "sqrt",
+       W_PERFORMS W_DEST " = sqrt(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+NATIVE(math_rand, 2, W_MATH "rand", W_FILL " " W_ARRAY " with random " W_VALUE "s", P(N, W_DEST));
+NATIVE(deque_size, 3, W_DEQUE "." W_SIZE, "report " W_SIZE W_OF W_DEST, P(N, W_DEQUE) P(1, W_SIZE));
+NATIVE(deque_get,
+       5,
+       W_DEQUE ".get",
+       W_FILL " " W_DEST W_FROM W_DEQUE " at index",
+       P(N, W_DEQUE) P(M, W_DEST) P(1, "index"));
+NATIVE(deque_set,
+       5,
+       W_DEQUE ".set",
+       "copies " W_SRC W_TO W_DEQUE " at index",
+       P(N, W_DEQUE) P(M, W_SRC) P(1, "index"));
 NATIVE(deque_insert,
-       "deque.insert",
-       "shift deque at index by len(src) and insert src",
        5,
-       deque_src_index);
-NATIVE(deque_erase, "deque.erase", "shift deque at index by len to erase", 4, deque_index_len);
-NATIVE(deque_push_front, "deque.push_front", "insert src before the front of deque", 4, deque_src);
-NATIVE(deque_push_back, "deque.push_back", "insert src after the back of deque", 4, deque_src);
+       W_DEQUE "." W_INSERT,
+       W_SHIFT " " W_DEQUE " at index by len(" W_SRC ")" W_AND W_INSERT " " W_SRC,
+       P(N, W_DEQUE) P(M, W_SRC) P(1, "index"));
+NATIVE(deque_erase,
+       4,
+       W_DEQUE "." W_ERASE,
+       W_SHIFT " " W_DEQUE " at index by len" W_TO W_ERASE,
+       P(N, W_DEQUE) P(1, "index") P(1, "len"));
+NATIVE(deque_push_front,
+       4,
+       W_DEQUE ".push_" W_FRONT,
+       W_INSERT " " W_SRC " before the " W_FRONT W_OF W_DEQUE,
+       P(N, W_DEQUE) P(M, W_SRC));
+NATIVE(deque_push_back,
+       4,
+       W_DEQUE ".push_" W_BACK,
+       W_INSERT " " W_SRC " after the " W_BACK W_OF W_DEQUE,
+       P(N, W_DEQUE) P(M, W_SRC));
 NATIVE(deque_pop_front,
-       "deque.pop_front",
-       "fill dest from front of deque then erase elements",
        4,
-       deque_dest);
+       W_DEQUE ".pop_" W_FRONT,
+       W_FILL " " W_DEST W_FROM W_FRONT W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
+       P(N, W_DEQUE) P(M, W_DEST));
 NATIVE(deque_pop_back,
-       "deque.pop_back",
-       "fill dest from back of deque then erase elements",
        4,
-       deque_dest);
+       W_DEQUE ".pop_" W_BACK,
+       W_FILL " " W_DEST W_FROM W_BACK W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
+       P(N, W_DEQUE) P(M, W_DEST));
 
 static const vm_native *const standard_natives[NAT_STANDARD_COUNT] = { NAT_STANDARD_LIST };
 
-const vm_native_table nat_standard_table = { standard_natives, NAT_STANDARD_COUNT };
+const vm_native_table nat_standard_table = { standard_natives, NAT_STANDARD_COUNT, nat_words };

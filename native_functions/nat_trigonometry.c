@@ -14,22 +14,48 @@
 #define SINE_ONE           32767 // sin(pi/2)
 #define SINE_FRACTION_BITS 15    // sines are 1.15 fixed point
 
-// sin over a quarter turn: SINE[i] ~ 32767 sin(pi i / 256), with
-// corrections made upstream, so 128 steps of 128 angle units each.
-#define SINE_STEP_BITS 7
-#define SINE_STEP      (1 << SINE_STEP_BITS)
-static const int16_t SINE[129] = {
-    0,     403,   804,   1207,  1608,  2010,  2411,  2812,  3212,  3612,  4011,  4411,  4808,
-    5206,  5603,  5998,  6393,  6787,  7180,  7572,  7962,  8352,  8740,  9127,  9513,  9896,
-    10279, 10660, 11040, 11417, 11794, 12167, 12540, 12911, 13279, 13646, 14010, 14373, 14733,
-    15091, 15447, 15801, 16151, 16500, 16846, 17190, 17531, 17869, 18205, 18538, 18868, 19196,
-    19520, 19842, 20160, 20476, 20788, 21097, 21403, 21706, 22006, 22302, 22595, 22884, 23171,
-    23453, 23732, 24008, 24279, 24548, 24812, 25073, 25330, 25583, 25833, 26078, 26320, 26557,
-    26791, 27020, 27246, 27467, 27684, 27897, 28106, 28311, 28511, 28707, 28899, 29086, 29269,
-    29448, 29622, 29792, 29957, 30117, 30274, 30425, 30572, 30715, 30852, 30985, 31114, 31238,
-    31357, 31471, 31581, 31686, 31786, 31881, 31972, 32057, 32138, 32215, 32285, 32352, 32413,
-    32470, 32521, 32569, 32610, 32647, 32679, 32706, 32728, 32746, 32758, 32766, 32767
+// sin over a quarter turn, 129 entries: SINE[i] ~ 32767 sin(pi i / 256),
+// with upstream's corrections, so 128 steps of 128 angle units each. The
+// table is kept as its second differences, 80 bytes instead of 258: in each
+// segment of 32 entries, entry 32s is SINE_START[s] and rises by
+// SINE_RISE[s] to the next; each rise differs from the one before by a
+// nibble of SINE_BENDS less 8 (entry k's in the low nibble of byte k / 2
+// when k is even). tests/native_functions compares every angle with upstream.
+#define SINE_STEP_BITS    7
+#define SINE_STEP         (1 << SINE_STEP_BITS)
+#define SINE_SEGMENT_BITS 5
+#define NIBBLE_BITS       4
+#define NIBBLE_MASK       0xF
+#define NIBBLE_BIAS       8
+#define SINE_SEGMENTS     4 // of 32 entries: 128 steps
+static const uint16_t SINE_START[SINE_SEGMENTS] = { 0, 12540, 23171, 30274 };
+static const uint16_t SINE_RISE[SINE_SEGMENTS] = { 403, 371, 282, 151 };
+static const uint8_t SINE_BENDS[64] = {
+    0xA6, 0x96, 0x87, 0x87, 0x97, 0x95, 0x67, 0x78, 0x77, 0x86, 0x76, 0x57, 0x68, 0x57, 0x48, 0x68,
+    0x75, 0x75, 0x65, 0x66, 0x74, 0x65, 0x55, 0x56, 0x65, 0x64, 0x64, 0x54, 0x55, 0x45, 0x45, 0x36,
+    0x55, 0x63, 0x53, 0x44, 0x35, 0x35, 0x35, 0x35, 0x44, 0x44, 0x43, 0x34, 0x44, 0x43, 0x33, 0x25,
+    0x44, 0x42, 0x34, 0x33, 0x34, 0x33, 0x24, 0x44, 0x51, 0x42, 0x52, 0x41, 0x33, 0x43, 0x42, 0x81,
 };
+
+// SINE[index] for index < 128, and its rise to SINE[index + 1] in `rise`:
+// at most 31 steps from the segment's start.
+static uint16_t sine_entry(uint16_t index, uint16_t *rise)
+{
+    uint16_t segment = index >> SINE_SEGMENT_BITS;
+    uint16_t value = SINE_START[segment];
+    uint16_t step = SINE_RISE[segment];
+    uint16_t k;
+
+    for (k = (uint16_t)(segment << SINE_SEGMENT_BITS); k < index; k++) {
+        uint8_t bends = SINE_BENDS[k >> 1];
+        if (k & 1)
+            bends >>= NIBBLE_BITS;
+        value = (uint16_t)(value + step);
+        step = (uint16_t)(step + (bends & NIBBLE_MASK) - NIBBLE_BIAS);
+    }
+    *rise = step;
+    return value;
+}
 
 // atan over octaves of the ratio y/x: ATAN[8k + m] ~ (32768/pi)
 // atan(2^(k-4) (1 + m/8)), with upstream's corrections; the last is pi/2.
@@ -70,10 +96,10 @@ int16_t nat_sin(int16_t angle)
         // Interpolate linearly between two entries: SINE[i] (128 - f) / 128 +
         // SINE[i + 1] f / 128, rounded down, is SINE[i] + step f / 128; the
         // table rises by at most 403 a step, so step * f fits 16 bits.
-        uint16_t index = folded >> SINE_STEP_BITS;
         uint16_t fraction = folded & (SINE_STEP - 1);
-        uint16_t step = (uint16_t)(SINE[index + 1] - SINE[index]);
-        sine = (uint16_t)(SINE[index] + (uint16_t)(step * fraction) / SINE_STEP);
+        uint16_t step;
+        uint16_t entry = sine_entry(folded >> SINE_STEP_BITS, &step);
+        sine = (uint16_t)(entry + (uint16_t)(step * fraction) / SINE_STEP);
     }
     return (int16_t)(negative ? -(int16_t)sine : (int16_t)sine);
 }

@@ -3,9 +3,9 @@
 # clang (docs/benchmarks.md); the firmware targets compile the same files
 # with their own compilers and config (the switch is the default).
 LIBRARIES += aseba_vm
-aseba_vm_SOURCES := vm/vm.c vm/vm_debug.c vm/vm_verify.c
+aseba_vm_SOURCES := vm/vm.c vm/vm_debug.c vm/vm_verify.c vm/vm_native_text.c
 EXTRA_CFLAGS_vm/vm := -DVM_USE_COMPUTED_GOTO=1
 
 # The node: protocol 5 on any byte stream, around the VM (protocol.md).
 LIBRARIES += aseba_node
-aseba_node_SOURCES := vm/node.c vm/node_send.c vm/node_description.c
+aseba_node_SOURCES := vm/node.c vm/node_send.c vm/node_description.c vm/node_crc.c

@@ -44,7 +44,7 @@ void node_init(node_state *node,
                const node_transport *transport,
                const node_hooks *hooks)
 {
-    static const vm_native_table no_natives = { NULL, 0 };
+    static const vm_native_table no_natives = { NULL, 0, NULL };
     uint8_t *bytes = (uint8_t *)node;
     uint16_t i;
 

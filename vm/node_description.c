@@ -3,10 +3,9 @@
 // and its fingerprint (§9).
 //
 // Every string is cut to what the wire allows. A native function's message
-// holds two strings and a name per parameter, which may together exceed the
-// 516-byte payload; its name is then kept whole, parameter names come next
-// and the description gets what is left. (A table with more parameters than
-// fit at all is broken; the node then sends as many as fit.)
+// holds two strings and a name per parameter, packed (vm.h) and expanded as
+// they are sent; a broken table's native whose message would exceed the
+// 516-byte payload is described by its name alone.
 
 #include "node_internal.h"
 
@@ -28,70 +27,91 @@ static uint16_t native_count(const node_state *node)
     return node->vm.natives.natives != NULL ? node->vm.natives.count : 0;
 }
 
-// The lengths a native function's strings get on the wire.
-typedef struct native_layout {
+// A native's packed description (vm.h) split into the parts of its message.
+typedef struct native_parts {
+    const char *documentation; // NULL when it has none
+    const char *parameters;    // the first parameter's size byte
     uint16_t parameter_count;
-    uint8_t name_length;
-    uint8_t description_length;
     uint16_t payload_length;
-} native_layout;
+} native_parts;
 
-// Parameter names share what the name leaves, in order; returns the length
-// of parameter `index`'s name and takes it from `*room`.
-static uint8_t parameter_name_length(const vm_native *native, uint16_t index, uint16_t *room)
+// The length of a text of a description (NULL: an empty one), cut to 255.
+static uint8_t text_length(const char *words, const char *text)
 {
-    uint8_t length = node_string_length(native->parameters[index].name, *room);
+    vm_native_text reader = { words, text, NULL };
+    uint8_t length = 0;
 
-    *room = (uint16_t)(*room - length);
+    if (text != NULL) {
+        while (length < NODE_MAX_STRING && vm_native_text_next(&reader) != 0)
+            length++;
+    }
     return length;
 }
 
-// The room parameter names start with: what the name and the parameters'
-// fixed bytes leave of the payload.
-static uint16_t parameter_room(const native_layout *layout)
+// The parameter after the one at `parameter` (its size byte).
+static const char *next_parameter(const char *parameter)
 {
-    return (uint16_t)(NODE_MAX_PAYLOAD - NATIVE_FIXED_BYTES -
-                      NATIVE_PARAMETER_BYTES * layout->parameter_count - layout->name_length);
+    return vm_native_text_end(parameter + 1);
 }
 
-static native_layout layout_native(const vm_native *native)
+static int16_t parameter_size(const char *parameter)
 {
-    native_layout layout;
-    uint16_t count = native->parameters != NULL ? native->parameter_count : 0;
-    uint16_t most;
-    uint16_t room;
-    uint16_t i;
+    return (int16_t)((uint8_t)*parameter - VM_NATIVE_SIZE_BIAS);
+}
 
-    layout.name_length = node_string_length(native->name, NODE_MAX_STRING);
-    // Only a broken table has more parameters than a message can hold.
-    most = (uint16_t)((NODE_MAX_PAYLOAD - NATIVE_FIXED_BYTES - layout.name_length) /
-                      NATIVE_PARAMETER_BYTES);
-    layout.parameter_count = count < most ? count : most;
-    room = parameter_room(&layout);
-    for (i = 0; i < layout.parameter_count; i++)
-        parameter_name_length(native, i, &room);
-    layout.description_length = node_string_length(native->description, room);
-    room = (uint16_t)(room - layout.description_length);
-    layout.payload_length = (uint16_t)(NODE_MAX_PAYLOAD - room);
-    return layout;
+// Texts are cut to 255 bytes. A native whose message would still exceed the
+// payload limit (a broken table) is described by its name alone.
+static native_parts split_native(const char *words, const char *description)
+{
+    native_parts parts;
+    const char *end = vm_native_text_end(description);
+
+    parts.documentation = NULL;
+    if ((uint8_t)*end == VM_NATIVE_DOCUMENTATION_MARK) {
+        parts.documentation = end + 1;
+        end = vm_native_text_end(parts.documentation);
+    }
+    parts.parameters = end;
+    parts.parameter_count = 0;
+    parts.payload_length = (uint16_t)(NATIVE_FIXED_BYTES + text_length(words, description) +
+                                      text_length(words, parts.documentation));
+    for (; *end != '\0'; end = next_parameter(end)) {
+        parts.payload_length += NATIVE_PARAMETER_BYTES + text_length(words, end + 1);
+        parts.parameter_count++;
+    }
+    if (parts.payload_length > NODE_MAX_PAYLOAD) {
+        parts.documentation = NULL;
+        parts.parameter_count = 0;
+        parts.payload_length = (uint16_t)(NATIVE_FIXED_BYTES + text_length(words, description));
+    }
+    return parts;
+}
+
+// A text of a description (or NULL: an empty one) as a protocol string.
+static void put_text(node_state *node, const char *text)
+{
+    vm_native_text reader = { node->vm.natives.words, text, NULL };
+    uint8_t length = text_length(reader.words, text);
+
+    node_frame_put_byte(node, length);
+    while (length-- > 0)
+        node_frame_put_byte(node, vm_native_text_next(&reader));
 }
 
 static void send_native(node_state *node, const vm_native *native)
 {
-    native_layout layout = layout_native(native);
-    uint16_t room = parameter_room(&layout);
+    native_parts parts = split_native(node->vm.natives.words, native->description);
+    const char *parameter = parts.parameters;
     uint16_t i;
 
-    node_frame_begin(node, NODE_MSG_NATIVE_FUNCTION_DESCRIPTION, layout.payload_length);
-    node_frame_put_string(node, native->name, layout.name_length);
-    node_frame_put_string(node, native->description, layout.description_length);
-    node_frame_put_u16(node, layout.parameter_count);
-    for (i = 0; i < layout.parameter_count; i++) {
-        const vm_native_parameter *parameter = &native->parameters[i];
-        uint8_t length = parameter_name_length(native, i, &room);
-
-        node_frame_put_u16(node, (uint16_t)parameter->size);
-        node_frame_put_string(node, parameter->name, length);
+    node_frame_begin(node, NODE_MSG_NATIVE_FUNCTION_DESCRIPTION, parts.payload_length);
+    put_text(node, native->description);
+    put_text(node, parts.documentation);
+    node_frame_put_u16(node, parts.parameter_count);
+    for (i = 0; i < parts.parameter_count; i++) {
+        node_frame_put_u16(node, (uint16_t)parameter_size(parameter));
+        put_text(node, parameter + 1);
+        parameter = next_parameter(parameter);
     }
     node_frame_end(node);
 }
@@ -139,26 +159,6 @@ void node_send_description(node_state *node)
 
 // --- fingerprint -------------------------------------------------------------
 
-#define CRC16_POLYNOMIAL 0x1021
-#define CRC16_TOP_BIT    0x8000
-
-uint16_t node_crc16(uint16_t crc, const uint8_t *bytes, uint16_t count)
-{
-    uint16_t i;
-    uint8_t bit;
-
-    for (i = 0; i < count; i++) {
-        crc ^= (uint16_t)((uint16_t)bytes[i] << BYTE_BITS);
-        for (bit = 0; bit < BYTE_BITS; bit++) {
-            if (crc & CRC16_TOP_BIT)
-                crc = (uint16_t)((uint16_t)(crc << 1) ^ CRC16_POLYNOMIAL);
-            else
-                crc = (uint16_t)(crc << 1);
-        }
-    }
-    return crc;
-}
-
 static uint16_t crc_u16(uint16_t crc, uint16_t value)
 {
     uint8_t bytes[2];
@@ -174,6 +174,24 @@ static uint16_t crc_string(uint16_t crc, const char *text, uint8_t length)
     static const uint8_t padding = 0;
 
     crc = node_crc16(crc, (const uint8_t *)text, length);
+    if (length & 1)
+        crc = node_crc16(crc, &padding, 1);
+    return crc;
+}
+
+// A text of a native's description, as crc_string counts strings.
+static uint16_t crc_text(uint16_t crc, const char *words, const char *text)
+{
+    static const uint8_t padding = 0;
+    vm_native_text reader = { words, text, NULL };
+    uint8_t length = text_length(words, text);
+    uint8_t i;
+
+    for (i = 0; i < length; i++) {
+        uint8_t byte = vm_native_text_next(&reader);
+
+        crc = node_crc16(crc, &byte, 1);
+    }
     if (length & 1)
         crc = node_crc16(crc, &padding, 1);
     return crc;
@@ -207,16 +225,16 @@ uint16_t node_description_fingerprint(const node_description *description,
         crc = crc_string(crc, name, node_string_length(name, NODE_MAX_STRING));
     }
     for (i = 0; i < count; i++) {
-        const vm_native *native = description->natives->natives[i];
-        native_layout layout = layout_native(native);
-        uint16_t room = parameter_room(&layout);
+        const char *words = description->natives->words;
+        const char *name = description->natives->natives[i]->description;
+        native_parts parts = split_native(words, name);
+        const char *parameter = parts.parameters;
 
-        crc = crc_string(crc, native->name, layout.name_length);
-        for (j = 0; j < layout.parameter_count; j++) {
-            uint8_t length = parameter_name_length(native, j, &room);
-
-            crc = crc_u16(crc, (uint16_t)native->parameters[j].size);
-            crc = crc_string(crc, native->parameters[j].name, length);
+        crc = crc_text(crc, words, name);
+        for (j = 0; j < parts.parameter_count; j++) {
+            crc = crc_u16(crc, (uint16_t)parameter_size(parameter));
+            crc = crc_text(crc, words, parameter + 1);
+            parameter = next_parameter(parameter);
         }
     }
     return crc;

@@ -11,6 +11,7 @@
 // well-formed whatever the callers do: bytes beyond the announced length are
 // dropped and missing ones are sent as zeros.
 void node_frame_begin(node_state *node, uint16_t type, uint16_t payload_length);
+void node_frame_put_byte(node_state *node, uint8_t byte);
 void node_frame_put_u16(node_state *node, uint16_t value);
 void node_frame_put_string(node_state *node, const char *text, uint8_t length);
 void node_frame_end(node_state *node);

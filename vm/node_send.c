@@ -20,7 +20,7 @@ static void flush(node_state *node, bool frame_complete)
     node->transmit_fill = 0;
 }
 
-static void put_byte(node_state *node, uint8_t byte)
+void node_frame_put_byte(node_state *node, uint8_t byte)
 {
     if (node->transmit_left == 0)
         return; // more than announced: never let it reach the wire
@@ -44,23 +44,23 @@ void node_frame_begin(node_state *node, uint16_t type, uint16_t payload_length)
 
 void node_frame_put_u16(node_state *node, uint16_t value)
 {
-    put_byte(node, (uint8_t)(value & BYTE_MASK));
-    put_byte(node, (uint8_t)(value >> BYTE_BITS));
+    node_frame_put_byte(node, (uint8_t)(value & BYTE_MASK));
+    node_frame_put_byte(node, (uint8_t)(value >> BYTE_BITS));
 }
 
 void node_frame_put_string(node_state *node, const char *text, uint8_t length)
 {
     uint8_t i;
 
-    put_byte(node, length);
+    node_frame_put_byte(node, length);
     for (i = 0; i < length; i++)
-        put_byte(node, (uint8_t)text[i]);
+        node_frame_put_byte(node, (uint8_t)text[i]);
 }
 
 void node_frame_end(node_state *node)
 {
     while (node->transmit_left > 0)
-        put_byte(node, 0);
+        node_frame_put_byte(node, 0);
     flush(node, true);
 }
 

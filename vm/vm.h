@@ -53,19 +53,27 @@ typedef struct vm_callbacks {
 // stack); the function reaches variables only through vm_variables().
 typedef void (*vm_native_function)(vm_state *vm, const int16_t *arguments);
 
-typedef struct vm_native_parameter {
-    int16_t size; // > 0 fixed, < 0 template id, 0 any size (protocol.md §5.5)
-    const char *name;
-} vm_native_parameter;
-
+// A native function as a node's table lists it. `description` is what
+// NATIVE_FUNCTION_DESCRIPTION says of it (protocol.md §5.5), packed into one
+// string so that a table costs a few bytes per native:
+//
+//   name [ VM_NATIVE_DOCUMENTATION_MARK documentation ] { size parameter-name }
+//
+// Texts are bytes from VM_NATIVE_TEXT_FIRST (0x20); in a table with a
+// dictionary (vm_native_table.words) each byte from VM_NATIVE_WORD_FIRST
+// (0x80) stands for a word of it. A parameter starts with its size plus
+// VM_NATIVE_SIZE_BIAS, one byte below 0x20: sizes -15 to 14 (> 0 fixed, < 0
+// template id, 0 any size). vm_native_text expands a text.
 typedef struct vm_native {
-    const char *name;
-    const char *description;
     vm_native_function function;
     uint8_t stack_words; // parameters + size words (bytecode.md §9)
-    uint8_t parameter_count;
-    const vm_native_parameter *parameters;
+    const char *description;
 } vm_native;
+
+#define VM_NATIVE_DOCUMENTATION_MARK 0x1F
+#define VM_NATIVE_SIZE_BIAS          0x10
+#define VM_NATIVE_TEXT_FIRST         0x20
+#define VM_NATIVE_WORD_FIRST         0x80
 
 // The natives a node exports, in NATIVE_CALL order; the same order is sent in
 // NATIVE_FUNCTION_DESCRIPTION messages. Tables are data: a target may chain
@@ -73,7 +81,26 @@ typedef struct vm_native {
 typedef struct vm_native_table {
     const vm_native *const *natives;
     uint16_t count;
+    // The words of the descriptions' bytes from VM_NATIVE_WORD_FIRST, in
+    // order, each ended by a NUL, the last by two; NULL when those bytes
+    // stand for themselves.
+    const char *words;
 } vm_native_table;
+
+// Where the text that starts at `text` in a packed description ends: at the
+// documentation mark, a parameter's size or the description's NUL.
+const char *vm_native_text_end(const char *text);
+
+// Reads a text of a packed description byte by byte, its words expanded:
+// start with { the table's words (or NULL), the text, NULL }.
+typedef struct vm_native_text {
+    const char *words;
+    const char *text; // the next byte of the text
+    const char *word; // the next byte of the word being expanded, or NULL
+} vm_native_text;
+
+// The text's next byte, or 0 after its last.
+uint8_t vm_native_text_next(vm_native_text *reader);
 
 // Memory the caller gives the VM; it must outlive the VM. The bytecode is
 // the VM's: write it with vm_set_bytecode, or call vm_reset after writing it

@@ -43,7 +43,7 @@ DSPIC30_BOOTLOADER_SOURCES := $(sort $(wildcard bootloader/*.c) hal/dspic30/dspi
                                 hal/dspic30/dspic30_clock.c hal/dspic30/dspic30_gpio.c \
                                 hal/dspic30/dspic30_uart.c hal/dspic30/dspic30_nvm.c \
                                 hal/hal_link_rings.c drivers/epuck/epuck_selector.c \
-                                vm/node_description.c)
+                                vm/node_crc.c)
 DSPIC30_APPLICATION_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_APPLICATION_SOURCES))
 DSPIC30_BOOTLOADER_OBJECTS := $(patsubst %.c,$(DSPIC30_OUT)/obj/%.o,$(DSPIC30_BOOTLOADER_SOURCES))
 DSPIC30_APPLICATION_SCRIPT := linker/epuck-app.gld

@@ -13,6 +13,7 @@
 #include "corpus.hpp"
 #include "test_targets.hpp"
 #include "tools/compiler/compiler.hpp"
+#include "tools/compiler/target_presets.hpp"
 
 extern "C" {
 #include "nat_standard.h"
@@ -44,19 +45,7 @@ constexpr std::size_t standard_native_count = 30;
 // NATIVE_FUNCTION_DESCRIPTION messages.
 std::vector<aseba::NativeFunction> natives_of(const vm_native_table &table)
 {
-    std::vector<aseba::NativeFunction> natives;
-    for (uint16_t i = 0; i < table.count; ++i) {
-        const vm_native &entry = *table.natives[i];
-        aseba::NativeFunction function;
-        function.name = entry.name ? entry.name : "";
-        function.description = entry.description ? entry.description : "";
-        for (uint8_t p = 0; p < entry.parameter_count; ++p)
-            function.parameters.push_back(
-              { entry.parameters[p].name ? entry.parameters[p].name : "",
-                entry.parameters[p].size });
-        natives.push_back(function);
-    }
-    return natives;
+    return aseba::native_functions(table);
 }
 
 // What the VM reported while running; errors are what README §2.6 counts.

@@ -9,7 +9,7 @@ natives_test_SOURCES := tests/native_functions/our_node.cpp \
                         tests/native_functions/natives_description_test.cpp \
                         tests/native_functions/natives_reference_test.cpp \
                         tests/native_functions/natives_vm_test.cpp
-natives_test_LIBS := aseba_natives aseba_vm
+natives_test_LIBS := aseba_compiler aseba_natives aseba_vm
 natives_test_LDLIBS := -lasebavm -lgtest -lgtest_main -pthread
 
 # The reference headers are not ours: no warnings from them.

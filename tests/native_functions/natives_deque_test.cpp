@@ -275,7 +275,7 @@ TEST(NativeRobustness, RandomArgumentsNeverMisbehave)
               static_cast<int16_t>(coin(random) == 0 ? any_word(random) : small_word(random)));
         node.errors.clear();
         node.call(native, popped);
-        ASSERT_EQ(node.errors.size(), node.stopped() ? 1u : 0u) << native.name;
+        ASSERT_EQ(node.errors.size(), node.stopped() ? 1u : 0u) << description_of(native).name;
     }
 }
 

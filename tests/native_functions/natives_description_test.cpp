@@ -4,6 +4,7 @@
 // stack contract of bytecode.md §9.
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -14,6 +15,9 @@
 
 extern "C" {
 #include <aseba/vm/natives.h>
+
+#include "nat_dsp.h"
+#include "nat_words.h"
 }
 
 namespace
@@ -58,8 +62,7 @@ std::vector<Row> specification_table()
     std::vector<Row> rows;
     std::string line;
     while (std::getline(file, line)) {
-        if (!line.starts_with("| ") || line.starts_with("| Id") ||
-            line.starts_with("|---"))
+        if (!line.starts_with("| ") || line.starts_with("| Id") || line.starts_with("|---"))
             continue;
         const auto cells = split(line, " | ");
         if (cells.size() != 4)
@@ -92,10 +95,10 @@ TEST(NativeDescriptions, MatchTheSpecificationTable)
     ASSERT_EQ(nat_standard_table.count, NAT_STANDARD_COUNT);
     ASSERT_EQ(rows.size(), nat_standard_table.count);
     for (const Row &row : rows) {
-        const vm_native &native = *nat_standard_table.natives[row.id];
+        const auto native = description_of(*nat_standard_table.natives[row.id]);
         EXPECT_EQ(native.name, row.name);
         EXPECT_EQ(native.description, row.description) << row.name;
-        ASSERT_EQ(native.parameter_count, row.parameters.size()) << row.name;
+        ASSERT_EQ(native.parameters.size(), row.parameters.size()) << row.name;
         for (size_t p = 0; p < row.parameters.size(); ++p) {
             EXPECT_EQ(native.parameters[p].name, row.parameters[p].name) << row.name;
             EXPECT_EQ(native.parameters[p].size, row.parameters[p].size) << row.name;
@@ -108,15 +111,15 @@ TEST(NativeDescriptions, MatchTheReferenceDescriptions)
     const AsebaNativeFunctionDescription *reference[] = { ASEBA_NATIVES_STD_DESCRIPTIONS };
     ASSERT_EQ(sizeof reference / sizeof reference[0], nat_standard_table.count);
     for (uint16_t n = 0; n < nat_standard_table.count; ++n) {
-        const vm_native &native = *nat_standard_table.natives[n];
-        EXPECT_STREQ(native.name, reference[n]->name);
-        EXPECT_STREQ(native.description, reference[n]->doc);
-        int count = 0;
+        const auto native = description_of(*nat_standard_table.natives[n]);
+        EXPECT_EQ(native.name, reference[n]->name);
+        EXPECT_EQ(native.description, reference[n]->doc);
+        size_t count = 0;
         while (reference[n]->arguments[count].size != 0)
             ++count;
-        ASSERT_EQ(native.parameter_count, count) << native.name;
-        for (int p = 0; p < count; ++p) {
-            EXPECT_STREQ(native.parameters[p].name, reference[n]->arguments[p].name);
+        ASSERT_EQ(native.parameters.size(), count) << native.name;
+        for (size_t p = 0; p < count; ++p) {
+            EXPECT_EQ(native.parameters[p].name, reference[n]->arguments[p].name);
             EXPECT_EQ(native.parameters[p].size, reference[n]->arguments[p].size);
         }
     }
@@ -124,19 +127,55 @@ TEST(NativeDescriptions, MatchTheReferenceDescriptions)
 
 TEST(NativeDescriptions, StackWordsFollowTheCallingConvention)
 {
-    for (uint16_t n = 0; n < nat_standard_table.count; ++n) {
-        const vm_native &native = *nat_standard_table.natives[n];
-        int any_size = 0;
+    std::vector<const vm_native *> natives(nat_standard_table.natives,
+                                           nat_standard_table.natives + nat_standard_table.count);
+    for (const vm_native *native : { NAT_DSP_LIST })
+        natives.push_back(native);
+    for (const vm_native *native : natives) {
+        const auto description = description_of(*native);
+        size_t any_size = 0;
         std::set<int> templates;
-        for (int p = 0; p < native.parameter_count; ++p) {
-            if (native.parameters[p].size == 0)
+        for (const auto &parameter : description.parameters) {
+            if (parameter.size == 0)
                 ++any_size;
-            if (native.parameters[p].size < 0)
-                templates.insert(native.parameters[p].size);
+            if (parameter.size < 0)
+                templates.insert(parameter.size);
         }
-        EXPECT_EQ(native.stack_words, native.parameter_count + any_size + templates.size())
-          << native.name;
-        EXPECT_NE(native.function, nullptr) << native.name;
+        EXPECT_EQ(native->stack_words, description.parameters.size() + any_size + templates.size())
+          << description.name;
+        EXPECT_NE(native->function, nullptr) << description.name;
+    }
+}
+
+// The W_ macros that descriptions are written with are the codes of the
+// dictionary's words, and every byte from 0x80 in a description is a word.
+TEST(NativeDescriptions, UseTheWordsOfTheDictionary)
+{
+    std::vector<std::string> words;
+    for (const char *word = nat_words; *word != '\0'; word += std::strlen(word) + 1)
+        words.push_back(word);
+    int code = VM_NATIVE_WORD_FIRST;
+#define CHECK_WORD(name, word_code, text)                                                          \
+    EXPECT_EQ(word_code, code++) << #name;                                                         \
+    EXPECT_EQ(static_cast<uint8_t>(W_##name[0]), word_code) << #name;                              \
+    EXPECT_EQ(std::strlen(W_##name), 1u) << #name;                                                 \
+    ASSERT_LT(size_t(word_code - VM_NATIVE_WORD_FIRST), words.size()) << #name;                    \
+    EXPECT_EQ(words[size_t(word_code - VM_NATIVE_WORD_FIRST)], text) << #name;
+    NAT_WORD_LIST(CHECK_WORD)
+#undef CHECK_WORD
+    EXPECT_EQ(size_t(code - VM_NATIVE_WORD_FIRST), words.size());
+
+    std::vector<const vm_native *> natives(nat_standard_table.natives,
+                                           nat_standard_table.natives + nat_standard_table.count);
+    for (const vm_native *native : { NAT_DSP_LIST })
+        natives.push_back(native);
+    for (const vm_native *native : natives) {
+        for (const char *byte = native->description; *byte != '\0'; ++byte) {
+            if (uint8_t(*byte) >= VM_NATIVE_WORD_FIRST) {
+                EXPECT_LT(size_t(uint8_t(*byte) - VM_NATIVE_WORD_FIRST), words.size())
+                  << description_of(*native).name;
+            }
+        }
     }
 }
 

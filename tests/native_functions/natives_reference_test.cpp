@@ -74,7 +74,7 @@ void expect_same_outcome(const OurNode &ours,
 
 std::string describe(const vm_native &native, const Words &popped, const Words &memory)
 {
-    std::string text = native.name;
+    std::string text = description_of(native).name;
     text += " popped";
     for (int16_t word : popped)
         text += " " + std::to_string(word);
@@ -94,7 +94,9 @@ TEST_P(MathReferenceTest, RandomCallsMatchTheReference)
 {
     const int id = GetParam();
     const vm_native &native = *nat_standard_table.natives[id];
-    const std::string name = native.name;
+    const auto description = description_of(native);
+    const std::string name = description.name;
+    const int parameter_count = int(description.parameters.size());
     std::mt19937 random(7000 + id);
     constexpr uint16_t memory_words = 48;
     int compared = 0;
@@ -103,8 +105,10 @@ TEST_P(MathReferenceTest, RandomCallsMatchTheReference)
         // reuse (or shift by one) an earlier address, to overlap.
         const int size = std::uniform_int_distribution<int>(0, trial % 3 ? 6 : 20)(random);
         Words addresses;
-        for (int p = 0; p < native.parameter_count; ++p) {
-            const int span = native.parameters[p].size > 0 ? native.parameters[p].size : size;
+        for (int p = 0; p < parameter_count; ++p) {
+            const int span = description.parameters[size_t(p)].size > 0
+                               ? description.parameters[size_t(p)].size
+                               : size;
             // An empty span still starts inside the variables: the compiler
             // only passes addresses of variables.
             const int highest = std::min(memory_words - span, memory_words - 1);
@@ -117,7 +121,7 @@ TEST_P(MathReferenceTest, RandomCallsMatchTheReference)
             addresses.push_back(static_cast<int16_t>(address));
         }
         Words popped = addresses;
-        if (native.stack_words > native.parameter_count)
+        if (native.stack_words > parameter_count)
             popped.push_back(static_cast<int16_t>(size));
 
         Words memory(memory_words);
@@ -159,7 +163,8 @@ INSTANTIATE_TEST_SUITE_P(StandardMath,
                          MathReferenceTest,
                          ::testing::Range(0, 21),
                          [](const ::testing::TestParamInfo<int> &entry) {
-                             std::string name = nat_standard_table.natives[entry.param]->name;
+                             std::string name =
+                               description_of(*nat_standard_table.natives[entry.param]).name;
                              std::replace(name.begin(), name.end(), '.', '_');
                              return name;
                          });
@@ -223,7 +228,7 @@ TEST(DequeReference, RandomOperationsMatchTheReference)
         const int erase_length = std::uniform_int_distribution<int>(-1, capacity)(random);
         const int id = std::uniform_int_distribution<int>(21, 29)(random);
         const vm_native &native = *nat_standard_table.natives[id];
-        const std::string name = native.name;
+        const std::string name = description_of(native).name;
 
         Words memory(memory_words);
         for (auto &word : memory)

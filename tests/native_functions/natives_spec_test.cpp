@@ -61,10 +61,11 @@ void check_binary(const vm_native &native, Expected expected, bool skip_zero_div
     node.put(100, left);
     node.put(200, right);
     node.call(native, { 0, 100, 200, size });
-    ASSERT_FALSE(node.stopped()) << native.name;
+    const std::string name = description_of(native).name;
+    ASSERT_FALSE(node.stopped()) << name;
     for (size_t i = 0; i < left.size(); ++i)
         EXPECT_EQ(node.variables[i], truncate(expected(left[i], right[i])))
-          << native.name << "(" << left[i] << ", " << right[i] << ")";
+          << name << "(" << left[i] << ", " << right[i] << ")";
     EXPECT_EQ(node.get(100, size), left);
     EXPECT_EQ(node.get(200, size), right);
 }
@@ -483,11 +484,12 @@ TEST(NativeMath, EveryTemplatedNativeDoesNothingForSizeZero)
 {
     for (uint16_t n = 0; n < nat_standard_table.count; ++n) {
         const vm_native &native = *nat_standard_table.natives[n];
+        const auto description = description_of(native);
         bool has_template = false;
-        for (int p = 0; p < native.parameter_count; ++p)
-            has_template |= native.parameters[p].size < 0;
+        for (const auto &parameter : description.parameters)
+            has_template |= parameter.size < 0;
         // Deques need their header; math.dot always writes its scalar dest.
-        const std::string name = native.name;
+        const std::string name = description.name;
         if (!has_template || name.starts_with("deque.") || name == "math.dot")
             continue;
         OurNode node(memory_words);
@@ -495,13 +497,13 @@ TEST(NativeMath, EveryTemplatedNativeDoesNothingForSizeZero)
             node.variables[i] = static_cast<int16_t>(3 * i + 1);
         const Words before = node.variables;
         Words popped;
-        for (int p = 0; p < native.parameter_count; ++p)
+        for (size_t p = 0; p < description.parameters.size(); ++p)
             popped.push_back(static_cast<int16_t>(10 * p));
         while (popped.size() < native.stack_words)
             popped.push_back(0);
         node.call(native, popped);
-        EXPECT_FALSE(node.stopped()) << native.name;
-        EXPECT_EQ(node.variables, before) << native.name;
+        EXPECT_FALSE(node.stopped()) << name;
+        EXPECT_EQ(node.variables, before) << name;
     }
 }
 

@@ -4,6 +4,18 @@
 #include <cstddef>
 #include <stdexcept>
 
+#include "tools/compiler/target_presets.hpp"
+
+extern "C" {
+#include "nat_words.h"
+}
+
+aseba::NativeFunction description_of(const vm_native &native)
+{
+    const vm_native *list[] = { &native };
+    return aseba::native_function(vm_native_table{ list, 1, nat_words }, 0);
+}
+
 namespace
 {
 
@@ -61,7 +73,7 @@ OurNode::OurNode(uint16_t variables_size)
 void OurNode::call(const vm_native &native, const std::vector<int16_t> &popped_words)
 {
     if (popped_words.size() != native.stack_words)
-        throw std::invalid_argument(std::string("wrong argument count for ") + native.name);
+        throw std::invalid_argument("wrong argument count for " + description_of(native).name);
     // vm_init copied the memory description; keep it pointing at our vector.
     vm.memory.variables = variables.data();
     vm.pc = call_pc;

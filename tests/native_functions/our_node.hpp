@@ -6,10 +6,16 @@
 #include <string>
 #include <vector>
 
+#include "tools/compiler/target.hpp"
+
 extern "C" {
 #include "nat_standard.h"
 #include "vm.h"
 }
+
+// What `native`, of the standard or DSP natives, says of itself: its packed
+// description expanded with their words (nat_words.h).
+aseba::NativeFunction description_of(const vm_native &native);
 
 // One error message the VM sent, with its protocol payload.
 struct ErrorReport {

@@ -21,19 +21,19 @@ TEST(DspDescriptions, FitTheProtocolAndTheStackContract)
     ASSERT_EQ(std::size(dsp_natives), size_t(NAT_DSP_COUNT));
     std::set<std::string> names;
     for (const vm_native *native : dsp_natives) {
-        const std::string name = native->name;
+        const auto description = description_of(*native);
+        const std::string name = description.name;
         EXPECT_EQ(name.rfind("dsp.", 0), 0u) << name;
         EXPECT_TRUE(names.insert(name).second) << name << " twice";
-        EXPECT_LE(std::string(native->description).size(), protocol_string_limit) << name;
-        EXPECT_GT(std::string(native->description).size(), 20u) << name;
+        EXPECT_LE(description.description.size(), protocol_string_limit) << name;
+        EXPECT_GT(description.description.size(), 20u) << name;
 
         // bytecode.md §9: one word per parameter, per size-0 parameter and
         // per distinct template id; template ids are -1, -2, ... without gaps.
         size_t any_size = 0;
         std::set<int> templates;
-        for (uint8_t i = 0; i < native->parameter_count; ++i) {
-            const auto &parameter = native->parameters[i];
-            EXPECT_LE(std::string(parameter.name).size(), protocol_string_limit);
+        for (const auto &parameter : description.parameters) {
+            EXPECT_LE(parameter.name.size(), protocol_string_limit);
             if (parameter.size == 0)
                 ++any_size;
             if (parameter.size < 0)
@@ -42,7 +42,7 @@ TEST(DspDescriptions, FitTheProtocolAndTheStackContract)
         if (!templates.empty()) {
             EXPECT_EQ(*templates.begin(), -int(templates.size())) << name;
         }
-        EXPECT_EQ(native->stack_words, native->parameter_count + any_size + templates.size())
+        EXPECT_EQ(native->stack_words, description.parameters.size() + any_size + templates.size())
           << name;
     }
 }
@@ -50,7 +50,7 @@ TEST(DspDescriptions, FitTheProtocolAndTheStackContract)
 // Arguments that work for each native on a node of 1000 variables.
 std::vector<int16_t> valid_arguments(const vm_native &native)
 {
-    const std::string name = native.name;
+    const std::string name = description_of(native).name;
     if (name == "dsp.fft")
         return { 0, 100, 64 };
     if (name == "dsp.mag")
@@ -70,11 +70,12 @@ TEST(DspHostileArguments, EveryOutOfRangeAddressOrSizeStopsTheVm)
 {
     constexpr uint16_t variables_size = 1000;
     for (const vm_native *native : dsp_natives) {
+        const auto description = description_of(*native);
         const auto valid = valid_arguments(*native);
         {
             DspNode node(variables_size);
             node.call(*native, valid);
-            EXPECT_TRUE(node.errors.empty()) << native->name;
+            EXPECT_TRUE(node.errors.empty()) << description.name;
         }
         for (size_t position = 0; position < valid.size(); ++position) {
             for (int16_t hostile : { int16_t(-1),
@@ -86,19 +87,19 @@ TEST(DspHostileArguments, EveryOutOfRangeAddressOrSizeStopsTheVm)
                 arguments[position] = hostile;
                 node.call(*native, arguments);
                 EXPECT_EQ(node.errors.size(), 1u)
-                  << native->name << " argument " << position << " = " << hostile;
+                  << description.name << " argument " << position << " = " << hostile;
                 EXPECT_TRUE(node.stopped());
             }
         }
         // An address whose span runs past the end by one word.
-        for (size_t position = 0; position < native->parameter_count; ++position) {
+        for (size_t position = 0; position < description.parameters.size(); ++position) {
             DspNode node(variables_size);
             auto arguments = valid;
             arguments[position] = static_cast<int16_t>(variables_size - 1);
             node.call(*native, arguments);
-            const bool scalar = native->parameters[position].size == 1;
+            const bool scalar = description.parameters[position].size == 1;
             EXPECT_EQ(node.errors.size(), scalar ? 0u : 1u)
-              << native->name << " argument " << position;
+              << description.name << " argument " << position;
         }
     }
 }
@@ -108,8 +109,10 @@ TEST(DspHostileArguments, EmptyArraysWriteNothing)
     // Size words of 0 (hand-made bytecode: the compiler has no empty arrays):
     // dsp.fft refuses them, the others have nothing to compute.
     for (const vm_native *native : dsp_natives) {
+        const auto description = description_of(*native);
         auto arguments = valid_arguments(*native);
-        for (size_t position = native->parameter_count; position < arguments.size(); ++position)
+        for (size_t position = description.parameters.size(); position < arguments.size();
+             ++position)
             arguments[position] = 0;
         DspNode node(1000);
         std::fill(node.variables.begin(), node.variables.end(), int16_t(-7));
@@ -119,9 +122,9 @@ TEST(DspHostileArguments, EmptyArraysWriteNothing)
         if (native == &nat_dsp_fft) {
             EXPECT_EQ(node.errors.size(), 1u);
         } else {
-            EXPECT_TRUE(node.errors.empty()) << native->name;
+            EXPECT_TRUE(node.errors.empty()) << description.name;
         }
-        EXPECT_EQ(node.variables, before) << native->name;
+        EXPECT_EQ(node.variables, before) << description.name;
     }
 }
 
@@ -142,7 +145,7 @@ uint16_t id_of(const vm_native &native)
     for (size_t i = 0; i < std::size(dsp_natives); ++i)
         if (dsp_natives[i] == &native)
             return static_cast<uint16_t>(DspNode::first_dsp_id + i);
-    throw std::invalid_argument(native.name);
+    throw std::invalid_argument(description_of(native).name);
 }
 
 TEST(DspThroughTheVm, CorrelationAndPeakWithTheStackOfBytecodeSpecification)

@@ -125,7 +125,8 @@ TEST(DspCorrAndConv, SaturateAndRefuseShiftsOutside0To31)
             ASSERT_EQ(refusing.errors.size(), 1u);
             EXPECT_EQ(refusing.errors[0].kind, DspError::Kind::node_specific);
             EXPECT_TRUE(refusing.stopped());
-            EXPECT_EQ(refusing.get(dest_address, 3), Words(3, 0)) << native->name << shift;
+            EXPECT_EQ(refusing.get(dest_address, 3), Words(3, 0))
+              << description_of(*native).name << shift;
         }
     }
 }

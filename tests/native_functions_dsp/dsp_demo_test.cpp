@@ -33,7 +33,8 @@ aseba::TargetDescription epuck_with_dsp()
     EXPECT_EQ(target.native_functions.size(), size_t(NAT_STANDARD_COUNT + NAT_DSP_COUNT));
     for (size_t i = 0; i < NAT_DSP_COUNT && NAT_STANDARD_COUNT + i < target.native_functions.size();
          ++i)
-        EXPECT_EQ(target.native_functions[NAT_STANDARD_COUNT + i].name, natives[i]->name);
+        EXPECT_EQ(target.native_functions[NAT_STANDARD_COUNT + i].name,
+                  description_of(*natives[i]).name);
     return target;
 }
 

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/compiler/target.hpp"
+
 extern "C" {
 #include "nat_dsp.h"
 #include "nat_standard.h"
@@ -15,6 +17,10 @@ extern "C" {
 }
 
 using Words = std::vector<int16_t>;
+
+// What `native`, of the standard or DSP natives, says of itself: its packed
+// description expanded with their words (nat_words.h).
+aseba::NativeFunction description_of(const vm_native &native);
 
 // One error message the VM sent.
 struct DspError {

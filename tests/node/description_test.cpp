@@ -8,6 +8,8 @@
 
 #include <cstring>
 
+#include "tools/compiler/target_presets.hpp"
+
 extern "C" {
 #include "nat_standard.h"
 }
@@ -79,12 +81,11 @@ uint16_t spec_fingerprint(const Preset &preset)
     }
     for (uint16_t i = 0; i < description.local_event_count; i++)
         crc.string(description.local_events[i].name);
-    for (uint16_t i = 0; i < description.natives->count; i++) {
-        const vm_native *native = description.natives->natives[i];
-        crc.string(native->name);
-        for (uint16_t j = 0; j < native->parameter_count; j++) {
-            crc.u16(uint16_t(native->parameters[j].size));
-            crc.string(native->parameters[j].name);
+    for (const aseba::NativeFunction &native : aseba::native_functions(*description.natives)) {
+        crc.string(native.name);
+        for (const aseba::NativeParameter &parameter : native.parameters) {
+            crc.u16(uint16_t(parameter.size));
+            crc.string(parameter.name);
         }
     }
     return crc.crc;
@@ -128,10 +129,34 @@ TEST(NodeDescription, SendsAllPartsInOrder)
         const Bytes &frame = harness.frames[7 + i];
         EXPECT_EQ(type_of(frame), 0x9003);
         // Natives in NATIVE_CALL order: the name comes first.
-        std::string name = nat_standard_table.natives[i]->name;
+        std::string name = aseba::native_function(nat_standard_table, uint16_t(i)).name;
         EXPECT_EQ(std::string(frame.begin() + 7, frame.begin() + 7 + frame[6]), name);
     }
     EXPECT_TRUE(harness.bad.empty()) << harness.bad.front();
+}
+
+// The bytes of `text`.
+Bytes bytes_of(const std::string &text)
+{
+    return Bytes(text.begin(), text.end());
+}
+
+// `first` then `second`.
+Bytes operator+(Bytes first, const Bytes &second)
+{
+    first.insert(first.end(), second.begin(), second.end());
+    return first;
+}
+
+// A packed native description (vm.h): name, documentation, parameters.
+std::string packed(const std::string &name,
+                   const std::string &documentation,
+                   const std::vector<std::pair<int, std::string>> &parameters)
+{
+    std::string description = name + '\x1F' + documentation;
+    for (const auto &[size, parameter] : parameters)
+        description += char(0x10 + size) + parameter;
+    return description;
 }
 
 // A description with strings longer than the wire allows.
@@ -140,30 +165,27 @@ struct LongStrings {
     // 254 ASCII bytes then a 3-byte character: the cut must not split it.
     std::string utf8_name = std::string(254, 'u') + "\xE2\x82\xAC" + "tail";
     std::string long_text = std::string(400, 'd');
-    std::vector<std::string> parameter_names;
-    std::vector<vm_native_parameter> parameters;
-    vm_native native{};
-    vm_native many_parameters{};
-    std::vector<vm_native_parameter> two_hundred;
-    const vm_native *list[2];
-    vm_native_table table{};
+    // Its documentation cut to 255 bytes; the message fits then.
+    std::string cut = packed("cut", long_text, { { -1, std::string(200, 'p') } });
+    // More than a message holds even with its texts cut: sent by name alone.
+    std::string too_long = packed(long_name,
+                                  long_text,
+                                  { { -1, std::string(200, 'a') },
+                                    { -2, std::string(200, 'b') },
+                                    { -3, std::string(200, 'c') } });
+    std::string many =
+      packed("many", "", std::vector<std::pair<int, std::string>>(200, { 1, "p" }));
+    vm_native natives[3] = { { nullptr, 2, cut.c_str() },
+                             { nullptr, 3, too_long.c_str() },
+                             { nullptr, 0, many.c_str() } };
+    const vm_native *list[3] = { &natives[0], &natives[1], &natives[2] };
+    vm_native_table table{ list, 3, nullptr };
     node_named_variable variables[3];
     node_local_event events[1];
     node_description description{};
 
     LongStrings()
     {
-        for (int i = 0; i < 3; i++)
-            parameter_names.push_back(std::string(200, char('a' + i)));
-        for (int i = 0; i < 3; i++)
-            parameters.push_back({ int16_t(-1 - i), parameter_names[size_t(i)].c_str() });
-        native = { long_name.c_str(), long_text.c_str(), nullptr, 3, 3, parameters.data() };
-        for (int i = 0; i < 200; i++)
-            two_hundred.push_back({ 1, "p" });
-        many_parameters = { "many", "", nullptr, 0, 200, two_hundred.data() };
-        list[0] = &native;
-        list[1] = &many_parameters;
-        table = { list, 2 };
         variables[0] = { "id", 1 };
         variables[1] = { "source", 1 };
         variables[2] = { utf8_name.c_str(), 4 };
@@ -178,7 +200,7 @@ TEST(NodeDescription, CutsLongStringsToWellFormedMessages)
     Preset p{ "long", &strings.description, 64, 16, 40 };
     Harness harness(p, 1);
     harness.feed(get_node_description(1));
-    ASSERT_EQ(harness.frames.size(), 1u + 3 + 1 + 2);
+    ASSERT_EQ(harness.frames.size(), 1u + 3 + 1 + 3);
     for (const std::string &problem : harness.bad)
         ADD_FAILURE() << problem;
 
@@ -194,20 +216,17 @@ TEST(NodeDescription, CutsLongStringsToWellFormedMessages)
     EXPECT_EQ(event[6 + 1 + 255], 255);
     EXPECT_EQ(payload_length(event), 1 + 255 + 1 + 255);
 
-    // The native's name (255) stays whole; three 200-byte parameter names
-    // and the description share the rest of the 516 bytes.
-    const Bytes &native = harness.frames[5];
-    EXPECT_EQ(payload_length(native), 516);
-    EXPECT_EQ(native[6], 255);
+    // "cut": its documentation cut to 255 bytes.
+    const Bytes &cut = harness.frames[5];
+    EXPECT_EQ(payload_length(cut), 1 + 3 + 1 + 255 + 2 + 2 + 1 + 200);
+    EXPECT_EQ(cut[6 + 1 + 3], 255);
 
-    // 200 parameters cannot fit: the name stays whole, then as many
-    // parameters as fit are sent, well-formed.
-    const Bytes &many = harness.frames[6];
-    EXPECT_LE(payload_length(many), 516);
-    EXPECT_EQ(std::string(many.begin() + 7, many.begin() + 11), "many");
-    size_t count_offset = 6 + 1 + 4 + 1; // name "many", empty description
-    uint16_t count = uint16_t(many[count_offset] | many[count_offset + 1] << 8);
-    EXPECT_EQ(count, (516 - 4 - 4) / 3);
+    // The others by name alone (cut to 255): no documentation, no parameter.
+    const Bytes &too_long = harness.frames[6];
+    EXPECT_EQ(hex(too_long),
+              hex(make_frame(1, 0x9003, Bytes{ 255 } + Bytes(255, 'n') + Bytes{ 0, 0, 0 })));
+    const Bytes &many = harness.frames[7];
+    EXPECT_EQ(hex(many), hex(make_frame(1, 0x9003, Bytes{ 4, 'm', 'a', 'n', 'y', 0, 0, 0 })));
 
     // The fingerprint covers the names as sent.
     SpecCrc crc;
@@ -221,24 +240,41 @@ TEST(NodeDescription, CutsLongStringsToWellFormedMessages)
     crc.u16(4);
     crc.string(std::string(254, 'u'));
     crc.string(std::string(255, 'n')); // the local event
-    // Names and parameters as sent, read back from the two messages.
-    for (const Bytes *frame : { &native, &many }) {
-        size_t position = 6;
-        crc.string(std::string(frame->begin() + 7, frame->begin() + 7 + (*frame)[6]));
-        position += 1 + (*frame)[position]; // the name
-        position += 1 + (*frame)[position]; // the description
-        uint16_t parameters = uint16_t((*frame)[position] | (*frame)[position + 1] << 8);
-        position += 2;
-        for (uint16_t i = 0; i < parameters; i++) {
-            uint16_t size = uint16_t((*frame)[position] | (*frame)[position + 1] << 8);
-            uint8_t length = (*frame)[position + 2];
-            crc.u16(size);
-            crc.string(std::string(frame->begin() + long(position) + 3,
-                                   frame->begin() + long(position) + 3 + length));
-            position += 3 + length;
-        }
-    }
+    crc.string("cut");
+    crc.u16(uint16_t(-1));
+    crc.string(std::string(200, 'p'));
+    crc.string(std::string(255, 'n'));
+    crc.string("many");
     EXPECT_EQ(node_fingerprint(&harness.node()), crc.crc);
+}
+
+// Bytes from 0x80 of a description stand for the words of its table's
+// dictionary, or for themselves in a table without one.
+TEST(NodeDescription, ExpandsTheWordsOfTheDictionary)
+{
+    const char words[] = "alpha\0beta\0";
+    const vm_native native = { nullptr,
+                               1,
+                               "\x81.\x80\x1F"
+                               "\x80 and \x81\x11"
+                               "x\x81" };
+    const vm_native *list[] = { &native };
+    node_named_variable variables[] = { { "id", 1 }, { "source", 1 }, { "args", 2 } };
+    for (const char *dictionary : { words, static_cast<const char *>(nullptr) }) {
+        vm_native_table table{ list, 1, dictionary };
+        node_description description = { "words", 5, variables, 3, nullptr, 0, &table };
+        Preset p{ "words", &description, 16, 8, 8 };
+        Harness harness(p, 1);
+        harness.feed(get_node_description(1));
+        ASSERT_EQ(harness.frames.size(), 5u);
+        std::string name = dictionary ? "beta.alpha" : "\x81.\x80";
+        std::string text = dictionary ? "alpha and beta" : "\x80 and \x81";
+        std::string parameter = dictionary ? "xbeta" : "x\x81";
+        Bytes payload = Bytes{ uint8_t(name.size()) } + bytes_of(name) +
+                        Bytes{ uint8_t(text.size()) } + bytes_of(text) +
+                        Bytes{ 1, 0, 1, 0, uint8_t(parameter.size()) } + bytes_of(parameter);
+        EXPECT_EQ(hex(harness.frames[4]), hex(make_frame(1, 0x9003, payload)));
+    }
 }
 
 TEST(NodeDescription, WorksWithoutNatives)

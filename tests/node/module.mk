@@ -7,7 +7,7 @@ TESTS += node_test
 node_test_SOURCES := tests/node/node_harness.cpp tests/node/reference_decoder.cpp \
                      tests/node/trace_test.cpp tests/node/robustness_test.cpp \
                      tests/node/description_test.cpp
-node_test_LIBS := aseba_node aseba_natives aseba_vm
+node_test_LIBS := aseba_node aseba_compiler aseba_natives aseba_vm
 node_test_LDLIBS := -lasebacommon -lgtest -lgtest_main -pthread
 
 # The reference headers are not ours: no warnings from them.

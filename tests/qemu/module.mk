@@ -42,6 +42,7 @@ TESTS += qemu_node_traces_test
 qemu_node_traces_test_SOURCES := tests/node/trace_test.cpp tests/node/node_harness.cpp \
                                  tests/node/reference_decoder.cpp tests/qemu/remote_node.cpp \
                                  tests/qemu/remote_vm.cpp vm/node_description.c vm/node_send.c \
+                                 vm/node_crc.c vm/vm_native_text.c \
                                  $(QEMU_REMOTE_SOURCES)
 qemu_node_traces_test_LIBS := aseba_natives
 qemu_node_traces_test_LDLIBS := -lasebacommon $(QEMU_TEST_LDLIBS)

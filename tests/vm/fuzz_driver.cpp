@@ -21,7 +21,8 @@ constexpr uint16_t FLAG_BITS = VM_FLAG_EVENT_ACTIVE | VM_FLAG_STEP_BY_STEP | VM_
 const vm_native_table &fuzz_natives()
 {
     static const vm_native_table table = { test_support::test_native_table().natives,
-                                           test_support::NATIVE_YIELD };
+                                           test_support::NATIVE_YIELD,
+                                           nullptr };
     return table;
 }
 

@@ -164,13 +164,11 @@ TEST(Verifier, RefusesUnknownInstructionsOperatorsAndNatives)
 
 TEST(Verifier, RefusesANativeThatTakesMoreWordsThanTheVmPasses)
 {
-    static const vm_native_parameter no_parameters[] = { { 1, "x" } };
-    static const vm_native greedy = {
-        "greedy", "",           [](vm_state *, const int16_t *) {}, VM_MAX_NATIVE_ARGUMENTS + 1,
-        1,        no_parameters
-    };
+    static const vm_native greedy = { [](vm_state *, const int16_t *) {},
+                                      VM_MAX_NATIVE_ARGUMENTS + 1,
+                                      "greedy\x1F\x11x" };
     static const vm_native *const natives[] = { &greedy };
-    static const vm_native_table table = { natives, 1 };
+    static const vm_native_table table = { natives, 1, nullptr };
     VmHarness harness(VmSizes(), 1, table);
     std::string pushes;
     for (int i = 0; i <= VM_MAX_NATIVE_ARGUMENTS; i++)

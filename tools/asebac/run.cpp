@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "tools/compiler/target_presets.hpp"
+
 extern "C" {
 #include "firmware/epuck_natives.h"
 #include "nat_standard.h"
@@ -118,7 +120,7 @@ bool execute_program(const CompileResult &compiled,
         const vm_native *found = nullptr;
         for (const vm_native_table *table : { &nat_standard_table, &epuck_native_table })
             for (uint16_t i = 0; i < table->count && found == nullptr; ++i)
-                if (function.name == table->natives[i]->name)
+                if (function.name == native_function(*table, i).name)
                     found = table->natives[i];
         if (found == nullptr) {
             error = "native function " + function.name + " has no implementation on the host";
@@ -126,7 +128,8 @@ bool execute_program(const CompileResult &compiled,
         }
         natives.push_back(found);
     }
-    vm_native_table table{ natives.data(), static_cast<uint16_t>(natives.size()) };
+    // Run, not described: no dictionary needed.
+    vm_native_table table{ natives.data(), static_cast<uint16_t>(natives.size()), nullptr };
 
     std::vector<uint16_t> bytecode(target.bytecode_size, 0);
     std::vector<int16_t> variables(target.variables_size, 0);

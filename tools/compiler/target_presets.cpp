@@ -25,19 +25,37 @@ constexpr uint16_t PROTOCOL_VERSION = 5;
 
 } // namespace
 
-// A C native table as the compiler sees natives.
-static std::vector<NativeFunction> native_functions(const vm_native_table &table)
+// A text of a packed native description (vm.h), expanded.
+static std::string native_text(const char *words, const char *text)
+{
+    vm_native_text reader{ words, text, nullptr };
+    std::string expanded;
+    while (uint8_t byte = vm_native_text_next(&reader))
+        expanded += char(byte);
+    return expanded;
+}
+
+NativeFunction native_function(const vm_native_table &table, uint16_t index)
+{
+    const char *description = table.natives[index]->description;
+    NativeFunction function;
+    function.name = native_text(table.words, description);
+    const char *part = vm_native_text_end(description);
+    if (uint8_t(*part) == VM_NATIVE_DOCUMENTATION_MARK) {
+        function.description = native_text(table.words, part + 1);
+        part = vm_native_text_end(part + 1);
+    }
+    for (; *part != '\0'; part = vm_native_text_end(part + 1))
+        function.parameters.push_back(
+          { native_text(table.words, part + 1), int16_t(uint8_t(*part) - VM_NATIVE_SIZE_BIAS) });
+    return function;
+}
+
+std::vector<NativeFunction> native_functions(const vm_native_table &table)
 {
     std::vector<NativeFunction> natives;
-    for (uint16_t i = 0; i < table.count; ++i) {
-        const vm_native &native = *table.natives[i];
-        NativeFunction function;
-        function.name = native.name;
-        function.description = native.description;
-        for (uint8_t p = 0; p < native.parameter_count; ++p)
-            function.parameters.push_back({ native.parameters[p].name, native.parameters[p].size });
-        natives.push_back(function);
-    }
+    for (uint16_t i = 0; i < table.count; ++i)
+        natives.push_back(native_function(table, i));
     return natives;
 }
 

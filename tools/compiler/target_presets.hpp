@@ -8,8 +8,18 @@
 
 #include "target.hpp"
 
+extern "C" {
+#include "vm/vm.h"
+}
+
 namespace aseba
 {
+
+// Native `index` of a C native table (vm.h), its packed description expanded.
+NativeFunction native_function(const vm_native_table &table, uint16_t index);
+
+// Every native of a C native table, in NATIVE_CALL order.
+std::vector<NativeFunction> native_functions(const vm_native_table &table);
 
 // The 30 standard natives (language.md §13.1), from the firmware's C table.
 std::vector<NativeFunction> standard_native_functions();

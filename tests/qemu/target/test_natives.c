@@ -75,17 +75,18 @@ static void native_stat(vm_state *vm, const int16_t *arguments)
     *outputs[2] = (int16_t)(sum / size);
 }
 
-static const vm_native subtract_native = { "test.subtract", "", native_subtract, 3, 0, 0 };
-static const vm_native fill_native = { "test.fill", "", native_fill, 3, 0, 0 };
-static const vm_native fail_native = { "test.fail", "", native_fail, 0, 0, 0 };
-static const vm_native reach_native = { "test.reach", "", native_reach, 2, 0, 0 };
-static const vm_native yield_native = { "test.yield", "", native_yield, 0, 0, 0 };
-static const vm_native stat_native = { "test.stat", "", native_stat, 5, 0, 0 };
+/* Described by their names alone (a packed description, vm.h). */
+static const vm_native subtract_native = { native_subtract, 3, "test.subtract" };
+static const vm_native fill_native = { native_fill, 3, "test.fill" };
+static const vm_native fail_native = { native_fail, 0, "test.fail" };
+static const vm_native reach_native = { native_reach, 2, "test.reach" };
+static const vm_native yield_native = { native_yield, 0, "test.yield" };
+static const vm_native stat_native = { native_stat, 5, "test.stat" };
 static const vm_native *const harness_native_list[] = {
     &subtract_native, &fill_native, &fail_native, &reach_native, &yield_native, &fail_native,
     &fail_native,     &fail_native, &fail_native, &fail_native,  &fail_native,  &stat_native
 };
-const vm_native_table harness_natives = { harness_native_list, 12 };
+const vm_native_table harness_natives = { harness_native_list, 12, 0 };
 
 /* --- tests/node/node_harness.cpp ------------------------------------------------ */
 
@@ -119,14 +120,21 @@ static void test_fill(vm_state *vm, const int16_t *arguments)
         dest[i] = *value;
 }
 
-static const vm_native_parameter sqrt_parameters[] = { { 1, "x" } };
-static const vm_native test_sqrt_native = { "test.sqrt", "integer square root", test_sqrt, 1,
-                                            1,           sqrt_parameters };
-static const vm_native_parameter fill_parameters[] = { { -1, "dest" }, { 1, "value" } };
-static const vm_native test_fill_native = { "test.fill", "fills dest with value", test_fill, 3,
-                                            2,           fill_parameters };
+/* Packed descriptions (vm.h): name, 0x1F and the documentation, then each
+   parameter's size + 0x10 and its name. */
+static const vm_native test_sqrt_native = { test_sqrt,
+                                            1,
+                                            "test.sqrt\x1F"
+                                            "integer square root\x11"
+                                            "x" };
+static const vm_native test_fill_native = { test_fill,
+                                            3,
+                                            "test.fill\x1F"
+                                            "fills dest with value\x0F"
+                                            "dest\x11"
+                                            "value" };
 static const vm_native *const tiny_native_list[] = { &test_sqrt_native, &test_fill_native };
-static const vm_native_table tiny_natives = { tiny_native_list, 2 };
+static const vm_native_table tiny_natives = { tiny_native_list, 2, 0 };
 
 static const node_named_variable tiny_variables[] = { { "id", 1 },
                                                       { "source", 1 },
