@@ -6,6 +6,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include <nlohmann/json.hpp>
 
 #include "mqtt_support.hpp"
@@ -31,6 +34,14 @@ bool nodes_published(TestClient &watcher, const std::string &network, std::vecto
         }
         return true;
     });
+}
+
+std::string file_text(const std::string &path)
+{
+    std::ifstream file(path);
+    std::ostringstream text;
+    text << file.rdbuf();
+    return text.str();
 }
 
 bool log_has(const BridgeProcess &bridge, const std::string &text)
@@ -344,6 +355,55 @@ TEST(MqttBridge, RunsCommandsWhenAllowed)
       eventually([&] { return !watcher.payloads("aseba/network/a/node/9/reply").empty(); }));
     EXPECT_NE(watcher.payloads("aseba/network/a/node/9/reply")[0].find("no node 9"),
               std::string::npos);
+}
+
+// examples/mqtt/record_events.py, with Debian's paho (an independent MQTT
+// client): its CSV rows, and its event delivered to the robots.
+TEST(MqttBridge, PythonExampleRecordsAndSends)
+{
+    ScratchFolder folder;
+    Broker broker(folder.path());
+    Emulator emulator(1, { "--load", relay_program() });
+    BridgeProcess bridge(
+      folder.path(),
+      "a",
+      { "-t", emulator.target(), "-b", broker.url(), "-p", relay_program(), "--accept-events" });
+    TestClient watcher(broker, "watcher", { "aseba/network/#" });
+    ASSERT_TRUE(watcher.wait_connected());
+    ASSERT_TRUE(nodes_published(watcher, "a", { 1 }));
+    std::string csv = folder.path() + "/events.csv";
+    std::string log = folder.path() + "/example.log";
+    console_test::ReferenceProgram example({ "/usr/bin/python3",
+                                             "examples/mqtt/record_events.py",
+                                             "--broker",
+                                             "127.0.0.1:" + std::to_string(broker.port()),
+                                             "--csv",
+                                             csv,
+                                             "--count",
+                                             "2",
+                                             "--duration",
+                                             "20",
+                                             "--send",
+                                             "ping",
+                                             "42" },
+                                           {},
+                                           log);
+    ASSERT_TRUE(eventually([&] { return file_text(log).find("recording") != std::string::npos; }))
+      << file_text(log);
+    Robots robots(emulator.target());
+    robots.trigger(1, 7); // the trigger, then robot 1's ping
+    ASSERT_TRUE(eventually([&] { return !example.running(); }, Milliseconds(20000)))
+      << file_text(log);
+    EXPECT_TRUE(eventually([&] { return robots.variable(1, "last") == 42; })) << file_text(log);
+    std::vector<std::string> rows = console_test::lines_of(file_text(csv));
+    ASSERT_EQ(rows.size(), 3u) << file_text(csv);
+    EXPECT_EQ(rows[0], "received,time_ms,network,node,node_name,event,args");
+    // received,time_ms, then the rest is known.
+    auto tail = [](const std::string &row) {
+        return row.substr(row.find(',', row.find(',') + 1) + 1);
+    };
+    EXPECT_EQ(tail(rows[1]), "a,0,,trigger,1 7");
+    EXPECT_EQ(tail(rows[2]), "a,1,e-puck,ping,7");
 }
 
 } // namespace
