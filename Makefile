@@ -165,7 +165,7 @@ run: $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba $(BUILD)/host/bin/aseba
 
 # The programs a user runs, on the PATH: `make install PREFIX=~/.local`.
 PREFIX ?= /usr/local
-INSTALLED_PROGRAMS := aseba asebac epuck-emu epuck-image
+INSTALLED_PROGRAMS := aseba asebac epuck-emu epuck-image aseba-mqtt
 install: $(foreach p,$(INSTALLED_PROGRAMS),$(BUILD)/host/bin/$(p))
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 755 $^ $(DESTDIR)$(PREFIX)/bin/
