@@ -104,6 +104,7 @@ void Bridge::run(const std::function<bool()> &stop)
             network_->keep_alive();
             handle_heard_frames();
             report_broker_state();
+            broker_->flush_pending(); // what a connection lost again left behind
             handle_broker_messages();
             handle_heard_frames(); // those heard while commands ran
             update_presence();
@@ -401,14 +402,14 @@ void Bridge::update_presence()
     std::vector<NodeKey> keys = network_->node_keys();
     for (NodeKey key : keys) {
         const client::Node &node = network_->node(key);
-        // A robot running since before we came tells its state when asked.
-        if (node.described && node.compatible && !node.execution && network_->is_alive(key) &&
-            network_->link_state(key.target) == client::LinkState::up)
-            network_->send(key.target, client::NodeCommand{ NODE_MSG_GET_EXECUTION_STATE, key.id });
         std::string payload = write_node(options_.networks[key.target], node);
         auto [entry, is_new] = presence_.try_emplace(key, "");
         if (!is_new && entry->second == payload)
             continue;
+        // Once per change: a robot running since before we came tells its state when asked.
+        if (node.described && node.compatible && !node.execution && network_->is_alive(key) &&
+            network_->link_state(key.target) == client::LinkState::up)
+            network_->send(key.target, client::NodeCommand{ NODE_MSG_GET_EXECUTION_STATE, key.id });
         if (broker_->publish(
               options_.topics.node(options_.networks[key.target], key.id), payload, 1, true))
             entry->second = payload;
