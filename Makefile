@@ -166,7 +166,7 @@ run: $(BUILD)/host/bin/epuck-emu $(BUILD)/host/bin/aseba-ide $(BUILD)/host/bin/a
 
 # The programs a user runs, on the PATH: `make install PREFIX=~/.local`.
 PREFIX ?= /usr/local
-INSTALLED_PROGRAMS := aseba aseba-ide asebac epuck-emu epuck-image
+INSTALLED_PROGRAMS := aseba aseba-ide aseba-mqtt asebac epuck-emu epuck-image
 install: $(foreach p,$(INSTALLED_PROGRAMS),$(BUILD)/host/bin/$(p))
 	install -d $(DESTDIR)$(PREFIX)/bin
 	install -m 755 $^ $(DESTDIR)$(PREFIX)/bin/

@@ -54,3 +54,13 @@ bench-network_SOURCES := bench/network_bench.cpp tests/interop/child_process.cpp
 bench-network_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
 $(foreach v,$(VARIANTS),$(eval \
   $(BUILD)/$(v)/bin/bench-network: | $(BUILD)/$(v)/bin/epuck-emu $(BUILD)/$(v)/bin/aseba))
+
+# The MQTT bridge: event latency from a robot of one network to a robot of
+# another through two bridges and mosquitto, and the events per second one
+# bridge publishes; mosquitto, epuck-emu and aseba-mqtt are run, not linked.
+PROGRAMS += bench-mqtt
+bench-mqtt_SOURCES := bench/mqtt_bench.cpp tests/mqtt/mqtt_support.cpp \
+                      tests/console/console_support.cpp
+bench-mqtt_LIBS := aseba_mqtt aseba_client aseba_compiler aseba_node
+$(foreach v,$(VARIANTS),$(eval \
+  $(BUILD)/$(v)/bin/bench-mqtt: | $(BUILD)/$(v)/bin/epuck-emu $(BUILD)/$(v)/bin/aseba-mqtt))

@@ -216,6 +216,21 @@ ide_table=$(
     echo "| IDE: Load all to the six robots running the new program, as the page shows it, ms (lowest–highest) | $ide_load | |"
 )
 
+# --- the MQTT bridge (aseba-mqtt, mosquitto) ---------------------------------
+echo "bench: MQTT bridge" >&2
+make --no-print-directory BUILD="$build" "$bin/bench-mqtt" "$bin/aseba-mqtt" >&2
+mqtt_seconds=10
+mqtt_events=20000
+read -r mqtt_median mqtt_p99 mqtt_samples < <("$bin/bench-mqtt" latency $mqtt_seconds)
+read -r mqtt_out mqtt_in _ _ < <("$bin/bench-mqtt" throughput $mqtt_events)
+mqtt_table=$(
+    echo "| figure | ours | goal |"
+    echo "|---|---|---|"
+    echo "| event latency, robot → bridge → mosquitto → bridge → robot of another network, loopback: median (99th percentile) ms, $mqtt_samples events | $mqtt_median ($mqtt_p99) | - |"
+    echo "| events per second one bridge carries, network → broker (QoS 1), $mqtt_events events | $mqtt_out | - |"
+    echo "| events per second one bridge carries, broker → network, $mqtt_events events | $mqtt_in | - |"
+)
+
 # --- the table -------------------------------------------------------------
 table=$(
     echo "| figure | ours | reference | ours / reference | goal |"
@@ -292,6 +307,22 @@ cores=$(nproc)
     echo "The \"before\" column quotes the measurements of the issues that asked"
     echo "for these figures."
     echo
+    echo "## MQTT bridge"
+    echo
+    echo "$mqtt_table"
+    echo
+    echo "Measured by \`bench-mqtt\` (bench/mqtt_bench.cpp) with Debian's mosquitto"
+    echo "on a free loopback port. Latency: \`bench-mqtt latency $mqtt_seconds\`, two"
+    echo "\`epuck-emu\` (real time), each behind its \`aseba-mqtt --accept-events\`; the"
+    echo "robot of the first emits tick(n) every 20 ms (bench/mqtt_ticker.aesl), the"
+    echo "robot of the second answers tock(n) (bench/mqtt_echo.aesl); the time from"
+    echo "tick(n) heard on the first network to tock(n) heard on the second. Events"
+    echo "per second: \`bench-mqtt throughput $mqtt_events\`, one bridge in front of a"
+    echo "network of the benchmark's own that writes robot events as fast as the"
+    echo "bridge reads them (so that no simulated robot sets the pace), until a"
+    echo "subscriber has them all; then as many events published on the broker, until"
+    echo "the network has them all."
+    echo
     echo "## How each figure is measured"
     echo
     echo "- VM: \`bench/vm_workload.aseba\` (nested loops with arithmetic and array"
@@ -364,4 +395,8 @@ cores=$(nproc)
 echo "$table"
 echo
 echo "$network_table"
+echo
+echo "$ide_table"
+echo
+echo "$mqtt_table"
 echo "bench: written to $report" >&2

@@ -16,13 +16,15 @@ set -euo pipefail
 declare -A groups=(
     [build]="make g++ gcc
              libpugixml-dev nlohmann-json3-dev libcli11-dev libasio-dev
-             libenki-dev libwebsocketpp-dev nodejs"
+             libenki-dev libwebsocketpp-dev nodejs libmosquitto-dev"
     [test]="libgtest-dev python3 aseba libdashel-dev locales
-            qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi chromium"
+            qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi chromium
+            mosquitto python3-paho-mqtt"
     [cross]="gcc-avr avr-libc binutils-avr gcc-arm-none-eabi libnewlib-arm-none-eabi"
     [fuzz]="clang libclang-rt-14-dev libpugixml-dev nlohmann-json3-dev libasio-dev aseba"
     [bench]="chromium valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr
-             gcc-arm-none-eabi libnewlib-arm-none-eabi simavr libsimavr-dev qemu-system-arm"
+             gcc-arm-none-eabi libnewlib-arm-none-eabi simavr libsimavr-dev qemu-system-arm
+             mosquitto"
     [experiment]="python3 python3-matplotlib"
 )
 # What each package is for:
@@ -41,6 +43,9 @@ declare -A groups=(
 #   qemu-system-arm, gcc-arm-none-eabi   the STM32F4 image and its tests
 #                       (QEMU netduinoplus2)
 #   simavr              benchmarks: the VM on an AVR, as a proxy for the dsPIC
+#   libmosquitto-dev    aseba-mqtt's MQTT client (docs/mqtt.md)
+#   mosquitto, python3-paho-mqtt   the broker of its tests and benchmarks, and
+#                       the client of its Python example (examples/mqtt)
 
 wanted=("$@")
 [ ${#wanted[@]} -gt 0 ] || wanted=(build)

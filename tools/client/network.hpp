@@ -181,8 +181,9 @@ class Network
     std::vector<NodeKey> select(const std::string &selector) const;
 
     // Sends `message` on one link (`target`; TransportError when it is
-    // down), or on every link that is up.
-    void send(size_t target, const Message &message);
+    // down), or on every link that is up. `source` is the sender's id: a
+    // host's (0) unless a bridge passes on another network's node.
+    void send(size_t target, const Message &message, uint16_t source = HOST_SOURCE);
     void send_to_all(const Message &message);
 
     // Reads what the links have, waiting at most `timeout` for the first

@@ -225,13 +225,13 @@ bool Network::process_links()
     return happened;
 }
 
-void Network::send(size_t target, const Message &message)
+void Network::send(size_t target, const Message &message, uint16_t source)
 {
     Link &link = *links_.at(target);
     if (link.state != LinkState::up)
         throw TransportError(link.name + ": the link is down" +
                              (link.error.empty() ? "" : " (" + link.error + ")"));
-    std::vector<uint8_t> bytes = serialize_frame(encode(message));
+    std::vector<uint8_t> bytes = serialize_frame(encode(message, source));
     try {
         link.stream.write_all(bytes.data(), bytes.size(), answer_timeout_, link.name);
     } catch (const TransportError &error) {
