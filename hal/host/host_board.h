@@ -66,6 +66,9 @@ struct hal_board {
 
     uint16_t critical_depth;
     bool reset_requested;
+    // Counts the starts and stops of timers and pin watches, so that the
+    // scheduler knows when a callback changed what falls due next.
+    uint32_t configuration_changes;
 
     uint16_t eeprom[HOST_EEPROM_WORDS];
     uint32_t flash[HOST_FLASH_WORDS];

@@ -56,11 +56,13 @@ void host_board_run_adc_scan(hal_board *board)
     uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
     uint8_t count = 0;
     uint8_t channel;
+    uint16_t mask;
 
     board->adc_next_due += SCAN_PERIOD_CYCLES;
-    for (channel = 0; channel < EPUCK_ADC_CHANNEL_COUNT; channel++) {
-        if ((board->adc_scan_mask >> channel) & 1u)
-            values[count++] = board->world->adc_read(board->world->context, channel, board->cycles);
+    // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
+    for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
+        channel = (uint8_t)__builtin_ctz(mask);
+        values[count++] = board->world->adc_read(board->world->context, channel, board->cycles);
     }
     if (board->adc_scan_callback)
         board->adc_scan_callback(board->adc_scan_context, values, count);
@@ -93,6 +95,7 @@ bool epuck_board_pin_watch_falling_edge(hal_board *board,
         return false;
     board->edge_callback[pin] = callback;
     board->edge_context[pin] = context;
+    board->configuration_changes++;
     board->last_input[pin] = epuck_board_pin_read(board, pin);
     return true;
 }
@@ -101,6 +104,7 @@ void epuck_board_pin_unwatch(hal_board *board, epuck_pin pin)
 {
     if ((uint16_t)pin < EPUCK_PIN_COUNT)
         board->edge_callback[pin] = 0;
+    board->configuration_changes++;
 }
 
 void host_board_input_changed(hal_board *board, epuck_pin pin)
