@@ -13,11 +13,14 @@ uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
     return board->world->adc_read(board->world->context, channel, board->cycles);
 }
 
+static uint8_t scan_channel_count(uint16_t mask)
+{
+    return (uint8_t)__builtin_popcount(mask);
+}
+
 static bool scan_mask_supported(uint16_t mask)
 {
-    uint8_t count = 0;
-    for (; mask != 0; mask = (uint16_t)(mask >> 1))
-        count = (uint8_t)(count + (mask & 1u));
+    uint8_t count = scan_channel_count(mask);
     return count >= EPUCK_ADC_SCAN_MIN_CHANNELS && count <= EPUCK_ADC_SCAN_MAX_CHANNELS;
 }
 
@@ -53,16 +56,22 @@ void host_board_run_adc_scan(hal_board *board);
 
 void host_board_run_adc_scan(hal_board *board)
 {
+    const host_world *world = board->world;
     uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
     uint8_t count = 0;
     uint8_t channel;
     uint16_t mask;
 
     board->adc_next_due += SCAN_PERIOD_CYCLES;
-    // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
-    for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
-        channel = (uint8_t)__builtin_ctz(mask);
-        values[count++] = board->world->adc_read(board->world->context, channel, board->cycles);
+    if (world->adc_read_channels) {
+        world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
+        count = scan_channel_count(board->adc_scan_mask);
+    } else {
+        // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
+        for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
+            channel = (uint8_t)__builtin_ctz(mask);
+            values[count++] = world->adc_read(world->context, channel, board->cycles);
+        }
     }
     if (board->adc_scan_callback)
         board->adc_scan_callback(board->adc_scan_context, values, count);

@@ -79,6 +79,9 @@ constexpr double gravity = 981; // cm/s²
 constexpr double adc_maximum = 4095;
 
 constexpr uint16_t selector_positions = 16;
+// The microphones' analog inputs (AN2..AN4), as a scan's channel mask.
+constexpr unsigned microphone_count = EPUCK_ADC_ACCELEROMETER_X - EPUCK_ADC_MICROPHONE_0;
+constexpr uint16_t microphone_channels = ((1u << microphone_count) - 1u) << EPUCK_ADC_MICROPHONE_0;
 // The boards' cycles in one world step (a whole number for 10 ms).
 constexpr uint64_t step_cycles =
   uint64_t(EnkiWorld::step_seconds * double(HOST_CYCLES_PER_SECOND) + 0.5);
@@ -153,6 +156,19 @@ uint16_t world_adc_read(void *context, uint8_t channel, uint64_t cycle)
                              double(cycle) / HOST_CYCLES_PER_SECOND);
     }
     return HOST_FLAT_OTHER_INPUT;
+}
+
+void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycle, uint16_t *values)
+{
+    RobotState &state = state_of(context);
+    // Most scans convert the microphones alone: in a silent arena they hear
+    // the bias, whatever the time.
+    if (channel_mask == microphone_channels && state.world->sound_field().silent()) {
+        std::fill(values, values + microphone_count, uint16_t(HOST_FLAT_MICROPHONE));
+        return;
+    }
+    for (unsigned count = 0; channel_mask != 0; channel_mask &= uint16_t(channel_mask - 1))
+        values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
 }
 
 bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
@@ -424,10 +440,9 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
         auto state = std::make_unique<RobotState>();
         state->world = this;
         state->index = i;
-        state->table = {
-            state.get(),     world_adc_read, world_pin_read,    world_pin_written,
-            world_i2c_write, world_i2c_read, world_camera_byte, world_next_input_change
-        };
+        state->table = { state.get(),       world_adc_read,          world_pin_read,
+                         world_pin_written, world_i2c_write,         world_i2c_read,
+                         world_camera_byte, world_next_input_change, world_adc_read_channels };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);
