@@ -413,7 +413,8 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
   : arena_(arena)
   , sound_field_(arena.sounds)
 {
-    world_ = std::make_unique<Enki::World>(arena.width, arena.height, to_enki(arena.wall_color));
+    world_ =
+      std::make_unique<PartitionedWorld>(arena.width, arena.height, to_enki(arena.wall_color));
     world_->takeObjectOwnership = false;
     world_->setRandomSeed(seed);
     std::srand(seed); // Enki's IR noise draws from rand()
