@@ -51,6 +51,7 @@ struct hal_board {
     epuck_adc_scan_callback adc_scan_callback;
     void *adc_scan_context;
     uint16_t adc_scan_mask;
+    uint8_t adc_scan_channels; // in the mask
     uint64_t adc_next_due;
 
     const host_world *world;

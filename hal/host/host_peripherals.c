@@ -15,7 +15,10 @@ uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
 
 static uint8_t scan_channel_count(uint16_t mask)
 {
-    return (uint8_t)__builtin_popcount(mask);
+    uint8_t count = 0;
+    for (; mask != 0; mask = (uint16_t)(mask & (mask - 1u)))
+        count++;
+    return count;
 }
 
 static bool scan_mask_supported(uint16_t mask)
@@ -34,6 +37,7 @@ bool epuck_board_adc_scan_start(hal_board *board,
     board->adc_scan_callback = callback;
     board->adc_scan_context = context;
     board->adc_scan_mask = channel_mask;
+    board->adc_scan_channels = scan_channel_count(channel_mask);
     board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
     return true;
 }
@@ -43,6 +47,7 @@ bool epuck_board_adc_scan_select(hal_board *board, uint16_t channel_mask)
     if (board->adc_scan_mask == 0 || !scan_mask_supported(channel_mask))
         return false;
     board->adc_scan_mask = channel_mask;
+    board->adc_scan_channels = scan_channel_count(channel_mask);
     return true;
 }
 
@@ -65,7 +70,7 @@ void host_board_run_adc_scan(hal_board *board)
     board->adc_next_due += SCAN_PERIOD_CYCLES;
     if (world->adc_read_channels) {
         world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
-        count = scan_channel_count(board->adc_scan_mask);
+        count = board->adc_scan_channels;
     } else {
         // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
         for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {

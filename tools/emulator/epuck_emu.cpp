@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <thread>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -93,7 +94,23 @@ struct Options {
     bool drawn_starts = false;
     uint16_t control_port = 0; // 0: none
     uint16_t arena_feed = 0;   // port of the arena feed; 0: none
+    unsigned threads = 0;      // 0: as many as pay off (firmware_threads)
 };
+
+// Robots a thread should have at least for another thread to pay off: each
+// simulated millisecond the threads meet, which costs about what a few
+// robots' millisecond of firmware does.
+constexpr size_t robots_per_thread = 16;
+
+// The threads the arena's firmware runs on: as asked, else one per core
+// while each gets enough robots.
+unsigned firmware_threads(const Options &options, size_t robots)
+{
+    if (options.threads > 0)
+        return options.threads;
+    size_t cores = std::max(1u, std::thread::hardware_concurrency());
+    return unsigned(std::clamp<size_t>(robots / robots_per_thread, 1, cores));
+}
 
 [[noreturn]] void fail(const std::string &message)
 {
@@ -183,6 +200,14 @@ Options parse_options(int argc, char **argv)
                   "arena mode: seed of every random draw (default 1): the same arena,\n"
                   "seed and program give the same run, bit for bit, while no tool sends\n"
                   "frames")
+      ->type_name("N");
+    app
+      .add_option("--threads",
+                  options.threads,
+                  "arena mode: threads that run the robots' firmware (default: one per\n"
+                  "core, each with 16 robots or more); the run is the same, bit for bit,\n"
+                  "whatever their number")
+      ->check(CLI::Range(1, 64))
       ->type_name("N");
     std::string speed = "max";
     app
@@ -410,7 +435,11 @@ int run_arena(const Options &options,
     std::unique_ptr<aseba::arena::ArenaSimulation> simulation_owner;
     try {
         simulation_owner = std::make_unique<aseba::arena::ArenaSimulation>(
-          arena, options.seed, bytecode, memory_preparation(options));
+          arena,
+          options.seed,
+          bytecode,
+          memory_preparation(options),
+          firmware_threads(options, arena.robots.size()));
     } catch (const std::exception &error) {
         fail(error.what());
     }
