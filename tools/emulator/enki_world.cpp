@@ -709,8 +709,12 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
     Enki::Vector forward(std::cos(robot.angle), std::sin(robot.angle));
     Enki::Point lens = robot.pos + forward * camera_forward;
     std::vector<Occluder> near;
+    const double robot_reach = reach + body_radius;
     for (size_t other = 0; other < robots_.size(); other++) {
-        if (other == index || (robots_[other]->pos - lens).norm() > reach + body_radius)
+        // The square test first: beyond it, the distance is beyond too.
+        Enki::Vector offset = robots_[other]->pos - lens;
+        if (other == index || std::abs(offset.x) > robot_reach ||
+            std::abs(offset.y) > robot_reach || offset.norm() > robot_reach)
             continue;
         Occluder occluder;
         occluder.centre = robots_[other]->pos;
