@@ -172,28 +172,38 @@ uint16_t host_board_link_room(const hal_board *board)
 
 bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t count)
 {
-    uint16_t i;
+    uint16_t end;
+    uint16_t first;
 
     if (count > host_board_link_room(board))
         return false;
-    for (i = 0; i < count; i++) {
-        uint16_t at =
-          (uint16_t)((board->receive_start + board->receive_count) % HAL_LINK_RECEIVE_CAPACITY);
-        board->receive[at] = bytes[i];
-        board->receive_count++;
-    }
+    if (count == 0)
+        return true;
+    // Into the ring in at most two pieces: up to its end, then from its start.
+    end = (uint16_t)((board->receive_start + board->receive_count) % HAL_LINK_RECEIVE_CAPACITY);
+    first = (uint16_t)(HAL_LINK_RECEIVE_CAPACITY - end);
+    if (first > count)
+        first = count;
+    memcpy(board->receive + end, bytes, first);
+    memcpy(board->receive, bytes + first, (size_t)(count - first));
+    board->receive_count = (uint16_t)(board->receive_count + count);
     return true;
 }
 
 uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
 {
-    uint16_t count = 0;
+    uint16_t count = capacity < board->receive_count ? capacity : board->receive_count;
+    uint16_t first = (uint16_t)(HAL_LINK_RECEIVE_CAPACITY - board->receive_start);
 
-    while (count < capacity && board->receive_count != 0) {
-        bytes[count++] = board->receive[board->receive_start];
-        board->receive_start = (uint16_t)((board->receive_start + 1) % HAL_LINK_RECEIVE_CAPACITY);
-        board->receive_count--;
-    }
+    if (count == 0)
+        return 0;
+    // Out of the ring in at most two pieces, as they went in.
+    if (first > count)
+        first = count;
+    memcpy(bytes, board->receive + board->receive_start, first);
+    memcpy(bytes + first, board->receive, (size_t)(count - first));
+    board->receive_start = (uint16_t)((board->receive_start + count) % HAL_LINK_RECEIVE_CAPACITY);
+    board->receive_count = (uint16_t)(board->receive_count - count);
     return count;
 }
 
