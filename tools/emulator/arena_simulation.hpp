@@ -54,6 +54,11 @@ class ArenaSimulation
     // Simulated seconds since the start.
     double seconds() const;
     size_t robot_count() const;
+    // Threads the firmware runs on.
+    unsigned threads() const
+    {
+        return workers_.threads();
+    }
     host_robot &robot(size_t index);
     epuck_firmware &firmware(size_t index);
     hal_board &board(size_t index);

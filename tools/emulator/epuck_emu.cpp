@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <functional>
 #include <thread>
 #include <memory>
@@ -505,6 +506,7 @@ int run_arena(const Options &options,
     const double status_period = terminal ? 0.5 : 10; // wall-clock seconds
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
+    const std::clock_t processor_start = std::clock();
     auto wall_seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
     double next_status = status_period;
     double next_feed = 0;
@@ -549,13 +551,19 @@ int run_arena(const Options &options,
         }
     }
     double wall = wall_seconds();
+    // Processor time, every thread's: unlike the wall clock, it does not
+    // depend on what else the computer runs.
+    double processor = double(std::clock() - processor_start) / CLOCKS_PER_SEC;
     std::printf("%sepuck-emu: stopped at %.1f simulated s after %.1f s (%.1fx real time), "
-                "%llu frames on the network\n",
+                "%llu frames on the network, %.2f s of processor time on %u thread%s\n",
                 terminal && !options.quiet ? "\n" : "",
                 simulation.seconds(),
                 wall,
                 simulation.seconds() / std::max(wall, 1e-9),
-                static_cast<unsigned long long>(network.frames_moved()));
+                static_cast<unsigned long long>(network.frames_moved()),
+                processor,
+                simulation.threads(),
+                simulation.threads() == 1 ? "" : "s");
     if (!options.quiet) {
         std::string line =
           status.line(simulation.seconds(), simulation.robot_count(), network.client_count());
