@@ -160,7 +160,7 @@ arena_runs=3
 arena_port=$((40000 + RANDOM % 20000))
 # One run: "factor processor_factor threads": simulated seconds over
 # wall-clock seconds (setup excluded) and over processor seconds (every
-# thread's, setup included), from the line epuck-emu prints on stopping.
+# thread's, setup excluded), from the line epuck-emu prints on stopping.
 arena_run() { # robots simulated_seconds
     "$bin/epuck-emu" --arena default --robots "$1" --load examples/paper-annex.aesl \
         --speed max --duration "$2" --port "$arena_port" --quiet |
@@ -365,7 +365,7 @@ cores=$(nproc)
     echo "  wall-clock time of the run, setup excluded, as epuck-emu prints it when it"
     echo "  stops, $arena_runs runs for 100 and 1000 robots. The wall clock depends on what"
     echo "  else the computer runs: beside it, the simulated time over the processor"
-    echo "  time of every thread (setup included), which does not. The square grows"
+    echo "  time of every thread (setup excluded), which does not. The square grows"
     echo "  with N (about 20 cm × 20 cm per robot, docs/arena-format.md)."
     echo "- STM32F4: \`make stm32f4\`, sizes by \`arm-none-eabi-size -A\` (code: the"
     echo "  vectors and .text; RAM: .data, .bss and the RAM the board keeps across resets"

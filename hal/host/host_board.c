@@ -58,9 +58,10 @@ static bool any_input_watched(const hal_board *board)
 #define EVENT_INPUT_CHANGE EPUCK_TIMER_COUNT
 
 // The earliest timer or input change at or before `until` (EVENT_NONE,
-// EVENT_INPUT_CHANGE, else a timer), its cycle in `due`. `input_change` is
-// the world's next input change after `*input_asked_at`, asked again only
-// once the clock has reached it: the world's answer holds until then.
+// EVENT_INPUT_CHANGE, else a timer), its cycle in `due`. `*input_change`,
+// when `*input_known`, is the world's answer to an earlier question: it
+// holds until the clock reaches it (host_world.h), then the world is asked
+// again.
 static int16_t next_timer_or_input(const hal_board *board,
                                    uint64_t until,
                                    uint64_t *due,
