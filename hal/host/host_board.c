@@ -39,10 +39,8 @@ uint64_t host_board_cycles(const hal_board *board)
     return board->cycles;
 }
 
-// What falls due next: an ADC scan, a timer, or a change of the inputs.
-#define EVENT_NONE         (-1)
-#define EVENT_ADC_SCAN     EPUCK_TIMER_COUNT
-#define EVENT_INPUT_CHANGE (EPUCK_TIMER_COUNT + 1)
+// Defined in host_peripherals.c: runs one ADC scan.
+void host_board_run_adc_scan(hal_board *board);
 
 static bool any_input_watched(const hal_board *board)
 {
@@ -54,17 +52,25 @@ static bool any_input_watched(const hal_board *board)
     return false;
 }
 
-// The earliest due event at or before `until`: EVENT_NONE, EVENT_ADC_SCAN,
-// EVENT_INPUT_CHANGE, else a timer.
-static int16_t next_event(const hal_board *board, uint64_t until, uint64_t *due)
+// What falls due next, other than an ADC scan: a timer, or a change of the
+// inputs.
+#define EVENT_NONE         (-1)
+#define EVENT_INPUT_CHANGE EPUCK_TIMER_COUNT
+
+// The earliest timer or input change at or before `until` (EVENT_NONE,
+// EVENT_INPUT_CHANGE, else a timer), its cycle in `due`. `*input_change`,
+// when `*input_known`, is the world's answer to an earlier question: it
+// holds until the clock reaches it (host_world.h), then the world is asked
+// again.
+static int16_t next_timer_or_input(const hal_board *board,
+                                   uint64_t until,
+                                   uint64_t *due,
+                                   uint64_t *input_change,
+                                   bool *input_known)
 {
     int16_t chosen = EVENT_NONE;
     int16_t i;
 
-    if (board->adc_scan_mask != 0 && board->adc_next_due <= until) {
-        chosen = EVENT_ADC_SCAN;
-        *due = board->adc_next_due;
-    }
     for (i = 0; i < EPUCK_TIMER_COUNT; i++) {
         const host_periodic *timer = &board->timers[i];
         if (timer->running && timer->next_due <= until && (chosen < 0 || timer->next_due < *due)) {
@@ -73,30 +79,54 @@ static int16_t next_event(const hal_board *board, uint64_t until, uint64_t *due)
         }
     }
     if (board->world->next_input_change && any_input_watched(board)) {
-        uint64_t change = board->world->next_input_change(board->world->context, board->cycles);
-        if (change > board->cycles && change <= until && (chosen < 0 || change < *due)) {
+        if (!*input_known || *input_change <= board->cycles) {
+            *input_change = board->world->next_input_change(board->world->context, board->cycles);
+            *input_known = true;
+        }
+        if (*input_change > board->cycles && *input_change <= until &&
+            (chosen < 0 || *input_change < *due)) {
             chosen = EVENT_INPUT_CHANGE;
-            *due = change;
+            *due = *input_change;
         }
     }
     return chosen;
 }
 
-// Defined in host_peripherals.c: runs one ADC scan.
-void host_board_run_adc_scan(hal_board *board);
-
 void host_board_advance(hal_board *board, uint64_t cycles)
 {
     uint64_t until = board->cycles + cycles;
-    uint64_t due = 0;
-    int16_t event;
+    uint64_t input_change = 0;
+    bool input_known = false;
     uint16_t pin;
 
-    while ((event = next_event(board, until, &due)) != EVENT_NONE) {
-        board->cycles = due;
-        if (event == EVENT_ADC_SCAN) {
+    for (;;) {
+        uint64_t due = 0;
+        uint32_t changes = board->configuration_changes;
+        int16_t event = next_timer_or_input(board, until, &due, &input_change, &input_known);
+        uint64_t scans_until = event == EVENT_NONE ? until : due;
+
+        // The ADC scans up to the next other event, the one at the same
+        // cycle included (a scan goes first), in a row: at 16,384 a second
+        // they are most of the events. A callback that starts or stops a
+        // peripheral ends the row, so that the next event is chosen again.
+        while (board->adc_scan_mask != 0 && board->adc_next_due <= scans_until) {
+            board->cycles = board->adc_next_due;
             host_board_run_adc_scan(board);
-        } else if (event == EVENT_INPUT_CHANGE) {
+            if (board->configuration_changes != changes)
+                break;
+        }
+        if (board->configuration_changes != changes)
+            continue;
+        if (event == EVENT_NONE)
+            break;
+        // A scan at the cycle of the input change hides it: the world is
+        // asked again for a change after that cycle.
+        if (event == EVENT_INPUT_CHANGE && board->cycles >= due)
+            continue;
+        board->cycles = due;
+        // Firmware code other than the scan's ran: ask the world again.
+        input_known = false;
+        if (event == EVENT_INPUT_CHANGE) {
             for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
                 if (board->edge_callback[pin])
                     host_board_input_changed(board, (epuck_pin)pin);
@@ -143,28 +173,38 @@ uint16_t host_board_link_room(const hal_board *board)
 
 bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t count)
 {
-    uint16_t i;
+    uint16_t end;
+    uint16_t first;
 
     if (count > host_board_link_room(board))
         return false;
-    for (i = 0; i < count; i++) {
-        uint16_t at =
-          (uint16_t)((board->receive_start + board->receive_count) % HAL_LINK_RECEIVE_CAPACITY);
-        board->receive[at] = bytes[i];
-        board->receive_count++;
-    }
+    if (count == 0)
+        return true;
+    // Into the ring in at most two pieces: up to its end, then from its start.
+    end = (uint16_t)((board->receive_start + board->receive_count) % HAL_LINK_RECEIVE_CAPACITY);
+    first = (uint16_t)(HAL_LINK_RECEIVE_CAPACITY - end);
+    if (first > count)
+        first = count;
+    memcpy(board->receive + end, bytes, first);
+    memcpy(board->receive, bytes + first, (size_t)(count - first));
+    board->receive_count = (uint16_t)(board->receive_count + count);
     return true;
 }
 
 uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
 {
-    uint16_t count = 0;
+    uint16_t count = capacity < board->receive_count ? capacity : board->receive_count;
+    uint16_t first = (uint16_t)(HAL_LINK_RECEIVE_CAPACITY - board->receive_start);
 
-    while (count < capacity && board->receive_count != 0) {
-        bytes[count++] = board->receive[board->receive_start];
-        board->receive_start = (uint16_t)((board->receive_start + 1) % HAL_LINK_RECEIVE_CAPACITY);
-        board->receive_count--;
-    }
+    if (count == 0)
+        return 0;
+    // Out of the ring in at most two pieces, as they went in.
+    if (first > count)
+        first = count;
+    memcpy(bytes, board->receive + board->receive_start, first);
+    memcpy(bytes + first, board->receive, (size_t)(count - first));
+    board->receive_start = (uint16_t)((board->receive_start + count) % HAL_LINK_RECEIVE_CAPACITY);
+    board->receive_count = (uint16_t)(board->receive_count - count);
     return count;
 }
 
@@ -204,6 +244,7 @@ bool epuck_board_timer_start(hal_board *board,
     slot->period = period;
     slot->next_due = board->cycles + period;
     slot->running = true;
+    board->configuration_changes++;
     return true;
 }
 
@@ -211,6 +252,7 @@ void epuck_board_timer_stop(hal_board *board, epuck_timer timer)
 {
     if ((uint16_t)timer < EPUCK_TIMER_COUNT)
         board->timers[timer].running = false;
+    board->configuration_changes++;
 }
 
 hal_critical_state hal_critical_enter(hal_board *board)
@@ -247,6 +289,7 @@ void host_board_reset(hal_board *board)
     board->receive_count = 0;
     board->critical_depth = 0;
     board->reset_requested = false;
+    board->configuration_changes++;
 }
 
 bool host_board_take_reset(hal_board *board)

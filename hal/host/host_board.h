@@ -51,6 +51,7 @@ struct hal_board {
     epuck_adc_scan_callback adc_scan_callback;
     void *adc_scan_context;
     uint16_t adc_scan_mask;
+    uint8_t adc_scan_channels; // in the mask
     uint64_t adc_next_due;
 
     const host_world *world;
@@ -66,6 +67,9 @@ struct hal_board {
 
     uint16_t critical_depth;
     bool reset_requested;
+    // Counts the starts and stops of timers and pin watches, so that the
+    // scheduler knows when a callback changed what falls due next.
+    uint32_t configuration_changes;
 
     uint16_t eeprom[HOST_EEPROM_WORDS];
     uint32_t flash[HOST_FLASH_WORDS];

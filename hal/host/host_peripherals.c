@@ -13,11 +13,17 @@ uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
     return board->world->adc_read(board->world->context, channel, board->cycles);
 }
 
-static bool scan_mask_supported(uint16_t mask)
+static uint8_t scan_channel_count(uint16_t mask)
 {
     uint8_t count = 0;
-    for (; mask != 0; mask = (uint16_t)(mask >> 1))
-        count = (uint8_t)(count + (mask & 1u));
+    for (; mask != 0; mask = (uint16_t)(mask & (mask - 1u)))
+        count++;
+    return count;
+}
+
+static bool scan_mask_supported(uint16_t mask)
+{
+    uint8_t count = scan_channel_count(mask);
     return count >= EPUCK_ADC_SCAN_MIN_CHANNELS && count <= EPUCK_ADC_SCAN_MAX_CHANNELS;
 }
 
@@ -31,6 +37,7 @@ bool epuck_board_adc_scan_start(hal_board *board,
     board->adc_scan_callback = callback;
     board->adc_scan_context = context;
     board->adc_scan_mask = channel_mask;
+    board->adc_scan_channels = scan_channel_count(channel_mask);
     board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
     return true;
 }
@@ -40,6 +47,7 @@ bool epuck_board_adc_scan_select(hal_board *board, uint16_t channel_mask)
     if (board->adc_scan_mask == 0 || !scan_mask_supported(channel_mask))
         return false;
     board->adc_scan_mask = channel_mask;
+    board->adc_scan_channels = scan_channel_count(channel_mask);
     return true;
 }
 
@@ -53,14 +61,22 @@ void host_board_run_adc_scan(hal_board *board);
 
 void host_board_run_adc_scan(hal_board *board)
 {
+    const host_world *world = board->world;
     uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
     uint8_t count = 0;
     uint8_t channel;
+    uint16_t mask;
 
     board->adc_next_due += SCAN_PERIOD_CYCLES;
-    for (channel = 0; channel < EPUCK_ADC_CHANNEL_COUNT; channel++) {
-        if ((board->adc_scan_mask >> channel) & 1u)
-            values[count++] = board->world->adc_read(board->world->context, channel, board->cycles);
+    if (world->adc_read_channels) {
+        world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
+        count = board->adc_scan_channels;
+    } else {
+        // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
+        for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
+            channel = (uint8_t)__builtin_ctz(mask);
+            values[count++] = world->adc_read(world->context, channel, board->cycles);
+        }
     }
     if (board->adc_scan_callback)
         board->adc_scan_callback(board->adc_scan_context, values, count);
@@ -93,6 +109,7 @@ bool epuck_board_pin_watch_falling_edge(hal_board *board,
         return false;
     board->edge_callback[pin] = callback;
     board->edge_context[pin] = context;
+    board->configuration_changes++;
     board->last_input[pin] = epuck_board_pin_read(board, pin);
     return true;
 }
@@ -101,6 +118,7 @@ void epuck_board_pin_unwatch(hal_board *board, epuck_pin pin)
 {
     if ((uint16_t)pin < EPUCK_PIN_COUNT)
         board->edge_callback[pin] = 0;
+    board->configuration_changes++;
 }
 
 void host_board_input_changed(hal_board *board, epuck_pin pin)

@@ -80,6 +80,7 @@ static const host_world flat_world = {
     flat_i2c_read,
     flat_camera_byte,
     0,
+    0,
 };
 
 const host_world *host_world_flat(void)

@@ -34,7 +34,17 @@ typedef struct host_world {
     // level (HOST_NO_INPUT_CHANGE: none foreseen), so that the board signals
     // an edge at the cycle it happens, as the chip's edge interrupt would
     // (the remote's INT0). NULL for a world whose inputs keep their levels.
+    // The board asks again after every event other than an ADC scan, and
+    // once the time it was told has come: the answer must hold meanwhile.
     uint64_t (*next_input_change)(void *context, uint64_t after_cycle);
+    // The values of the analog inputs of `channel_mask` (bit n = ANn) at
+    // `cycle`, lowest channel first, into `values`: what adc_read gives for
+    // each, in one call for a whole ADC scan (16,384 a second). NULL: the
+    // board calls adc_read for each channel.
+    void (*adc_read_channels)(void *context,
+                              uint16_t channel_mask,
+                              uint64_t cycle,
+                              uint16_t *values);
 } host_world;
 
 #define HOST_NO_INPUT_CHANGE UINT64_MAX

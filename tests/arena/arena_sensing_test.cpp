@@ -352,9 +352,9 @@ bool expect_same_run(const RunResult &first, const RunResult &second, const RunR
     return differs;
 }
 
-RunResult run_annex(uint32_t seed, const std::vector<uint16_t> &bytecode)
+RunResult run_annex(uint32_t seed, const std::vector<uint16_t> &bytecode, unsigned threads = 1)
 {
-    ArenaSimulation simulation(default_arena(), seed, bytecode);
+    ArenaSimulation simulation(default_arena(), seed, bytecode, {}, threads);
     simulation.run_for(10);
     return snapshot(simulation);
 }
@@ -373,6 +373,17 @@ TEST(ArenaDeterminism, SameSeedSameRunBitForBit)
         EXPECT_GT(std::hypot(first.poses[i].x - default_arena().robots[i].x,
                              first.poses[i].y - default_arena().robots[i].y),
                   5);
+}
+
+// The robots' firmware on several threads: the same run as on one.
+TEST(ArenaDeterminism, SameRunWhateverTheThreadCount)
+{
+    std::vector<uint16_t> annex = compile("examples/paper-annex.aesl");
+    RunResult one_thread = run_annex(7, annex, 1);
+    RunResult three_threads = run_annex(7, annex, 3);
+    RunResult other_seed = run_annex(8, annex, 3);
+    EXPECT_TRUE(expect_same_run(one_thread, three_threads, other_seed))
+      << "the seed changed nothing";
 }
 
 namespace

@@ -251,8 +251,13 @@ bool SoundSource::sounding(double seconds) const
 
 bool GroundArea::contains(double px, double py) const
 {
-    if (shape == Shape::disc)
+    if (shape == Shape::disc) {
+        // Outside the disc's square, hypot can only be larger than the
+        // radius: the cheap test first.
+        if (std::abs(px - x) > radius || std::abs(py - y) > radius)
+            return false;
         return std::hypot(px - x, py - y) <= radius;
+    }
     return px >= x && px <= x + width && py >= y && py <= y + height;
 }
 

@@ -2,6 +2,7 @@
 
 #include "arena_simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "robot_memory.hpp"
@@ -19,13 +20,22 @@ constexpr uint32_t milliseconds_per_step = uint32_t(EnkiWorld::step_seconds * 10
 // bus cannot stall time; an idle robot needs one pass.
 constexpr int polls_per_tick = 32;
 
+void hold_output(void *context, const uint8_t *bytes, uint16_t count)
+{
+    auto *held = static_cast<ArenaSimulation::HeldOutput *>(context);
+    held->bytes.insert(held->bytes.end(), bytes, bytes + count);
+}
+
 } // namespace
 
 ArenaSimulation::ArenaSimulation(const Arena &arena,
                                  uint32_t seed,
                                  const std::vector<uint16_t> &bytecode,
-                                 const std::function<void(host_robot &)> &prepare)
+                                 const std::function<void(host_robot &)> &prepare,
+                                 unsigned threads)
   : world_(arena, seed)
+  , workers_(threads)
+  , run_robots_([this](size_t begin, size_t end) { run_robots(begin, end); })
 {
     for (size_t i = 0; i < arena.robots.size(); i++) {
         auto robot = std::make_unique<host_robot>();
@@ -40,21 +50,41 @@ ArenaSimulation::ArenaSimulation(const Arena &arena,
         host_robot_update_node_id(robot.get());
         network_.attach(&robot->board);
         host::power_on(*robot, prepare, bytecode);
+        auto held = std::make_unique<HeldOutput>();
+        held->output = robot->board.link_output;
+        held->context = robot->board.link_context;
+        robot->board.link_output = hold_output;
+        robot->board.link_context = held.get();
+        held_outputs_.push_back(std::move(held));
         robots_.push_back(std::move(robot));
     }
 }
 
 ArenaSimulation::~ArenaSimulation() = default;
 
+void ArenaSimulation::run_robots(size_t begin, size_t end)
+{
+    for (size_t i = begin; i < end; i++) {
+        host_robot *robot = robots_[i].get();
+        host_board_set_time(&robot->board, milliseconds_);
+        for (int poll = 0; poll < polls_per_tick; poll++)
+            if (!host_robot_poll(robot))
+                break;
+    }
+}
+
 void ArenaSimulation::step()
 {
     for (uint32_t tick = 0; tick < milliseconds_per_step; tick++) {
         milliseconds_++;
-        for (auto &robot : robots_) {
-            host_board_set_time(&robot->board, milliseconds_);
-            for (int poll = 0; poll < polls_per_tick; poll++)
-                if (!host_robot_poll(robot.get()))
-                    break;
+        workers_.run(robots_.size(), run_robots_);
+        for (auto &held : held_outputs_) {
+            for (size_t sent = 0; sent < held->bytes.size();) {
+                uint16_t count = uint16_t(std::min<size_t>(held->bytes.size() - sent, UINT16_MAX));
+                held->output(held->context, held->bytes.data() + sent, count);
+                sent += count;
+            }
+            held->bytes.clear();
         }
         network_.service(0);
     }

@@ -5,6 +5,11 @@
 // after each, then advances the physics. Nothing depends on the wall clock,
 // so the same arena and seed give the same run, bit for bit, as long as no
 // tool sends frames.
+//
+// The robots' firmware may run on several threads: in a millisecond each
+// robot only reads the world and its own board, and what it sends waits
+// until every robot has run, then goes to the network in robot order, as it
+// would from one thread. The run is the same whatever the thread count.
 
 #pragma once
 
@@ -16,6 +21,7 @@
 #include "arena_file.hpp"
 #include "enki_world.hpp"
 #include "network.hpp"
+#include "worker_pool.hpp"
 
 extern "C" {
 #include "hal/host/host_robot.h"
@@ -29,11 +35,13 @@ class ArenaSimulation
   public:
     // Builds the world and powers each robot on with its node id (or, for a
     // robot without one, the id its selector gives, as on the chip),
-    // `prepare` and `bytecode` as host::power_on does (robot_memory.hpp).
+    // `prepare` and `bytecode` as host::power_on does (robot_memory.hpp);
+    // the firmware runs on `threads` threads (the caller's included).
     ArenaSimulation(const Arena &arena,
                     uint32_t seed,
                     const std::vector<uint16_t> &bytecode,
-                    const std::function<void(host_robot &)> &prepare = {});
+                    const std::function<void(host_robot &)> &prepare = {},
+                    unsigned threads = 1);
     ~ArenaSimulation();
     ArenaSimulation(const ArenaSimulation &) = delete;
     ArenaSimulation &operator=(const ArenaSimulation &) = delete;
@@ -46,6 +54,11 @@ class ArenaSimulation
     // Simulated seconds since the start.
     double seconds() const;
     size_t robot_count() const;
+    // Threads the firmware runs on.
+    unsigned threads() const
+    {
+        return workers_.threads();
+    }
     host_robot &robot(size_t index);
     epuck_firmware &firmware(size_t index);
     hal_board &board(size_t index);
@@ -70,10 +83,24 @@ class ArenaSimulation
     // last press. Throws std::out_of_range for an index without a robot.
     void press_remote_key(const std::vector<size_t> &indices, uint8_t address, uint8_t command);
 
+    // Where a robot's link output goes while the robots run: held, then
+    // passed to the network's output in robot order.
+    struct HeldOutput {
+        void (*output)(void *context, const uint8_t *bytes, uint16_t count) = nullptr;
+        void *context = nullptr;
+        std::vector<uint8_t> bytes;
+    };
+
   private:
+    // One millisecond of firmware for robots begin..end.
+    void run_robots(size_t begin, size_t end);
+
     EnkiWorld world_;
     host::Network network_;
     std::vector<std::unique_ptr<host_robot>> robots_;
+    std::vector<std::unique_ptr<HeldOutput>> held_outputs_;
+    WorkerPool workers_;
+    std::function<void(size_t, size_t)> run_robots_;
     uint32_t milliseconds_ = 0;
     uint8_t remote_toggle_ = 0;
 };

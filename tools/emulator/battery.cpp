@@ -44,6 +44,7 @@ double battery_volts(double charge)
 Battery::Battery(const BatteryModel &model, double charge)
   : model_(model)
   , charge_(charge)
+  , low_(volts() < battery_low_volts)
 {
 }
 
@@ -52,6 +53,7 @@ void Battery::drain(double seconds, unsigned motors_turning)
     double milliamps = model_.idle_ma + model_.motor_ma * motors_turning;
     double used_mah = milliamps * seconds / seconds_per_hour;
     charge_ = std::max(0.0, charge_ - used_mah / model_.capacity_mah);
+    low_ = volts() < battery_low_volts;
 }
 
 } // namespace aseba::arena

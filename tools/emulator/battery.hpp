@@ -37,15 +37,17 @@ class Battery
     {
         return battery_volts(charge_);
     }
-    // Whether BATT_LOW reads low.
+    // Whether BATT_LOW reads low (the firmware reads the line thousands of
+    // times a second; the charge changes at each drain).
     bool low() const
     {
-        return volts() < battery_low_volts;
+        return low_;
     }
 
   private:
     BatteryModel model_;
     double charge_;
+    bool low_;
 };
 
 } // namespace aseba::arena

@@ -79,6 +79,9 @@ constexpr double gravity = 981; // cm/s²
 constexpr double adc_maximum = 4095;
 
 constexpr uint16_t selector_positions = 16;
+// The microphones' analog inputs (AN2..AN4), as a scan's channel mask.
+constexpr unsigned microphone_count = EPUCK_ADC_ACCELEROMETER_X - EPUCK_ADC_MICROPHONE_0;
+constexpr uint16_t microphone_channels = ((1u << microphone_count) - 1u) << EPUCK_ADC_MICROPHONE_0;
 // The boards' cycles in one world step (a whole number for 10 ms).
 constexpr uint64_t step_cycles =
   uint64_t(EnkiWorld::step_seconds * double(HOST_CYCLES_PER_SECOND) + 0.5);
@@ -153,6 +156,19 @@ uint16_t world_adc_read(void *context, uint8_t channel, uint64_t cycle)
                              double(cycle) / HOST_CYCLES_PER_SECOND);
     }
     return HOST_FLAT_OTHER_INPUT;
+}
+
+void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycle, uint16_t *values)
+{
+    RobotState &state = state_of(context);
+    // Most scans convert the microphones alone: in a silent arena they hear
+    // the bias, whatever the time.
+    if (channel_mask == microphone_channels && state.world->sound_field().silent()) {
+        std::fill(values, values + microphone_count, uint16_t(HOST_FLAT_MICROPHONE));
+        return;
+    }
+    for (unsigned count = 0; channel_mask != 0; channel_mask &= uint16_t(channel_mask - 1))
+        values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
 }
 
 bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
@@ -397,7 +413,8 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
   : arena_(arena)
   , sound_field_(arena.sounds)
 {
-    world_ = std::make_unique<Enki::World>(arena.width, arena.height, to_enki(arena.wall_color));
+    world_ =
+      std::make_unique<PartitionedWorld>(arena.width, arena.height, to_enki(arena.wall_color));
     world_->takeObjectOwnership = false;
     world_->setRandomSeed(seed);
     std::srand(seed); // Enki's IR noise draws from rand()
@@ -424,10 +441,9 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
         auto state = std::make_unique<RobotState>();
         state->world = this;
         state->index = i;
-        state->table = {
-            state.get(),     world_adc_read, world_pin_read,    world_pin_written,
-            world_i2c_write, world_i2c_read, world_camera_byte, world_next_input_change
-        };
+        state->table = { state.get(),       world_adc_read,          world_pin_read,
+                         world_pin_written, world_i2c_write,         world_i2c_read,
+                         world_camera_byte, world_next_input_change, world_adc_read_channels };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);
@@ -693,8 +709,12 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
     Enki::Vector forward(std::cos(robot.angle), std::sin(robot.angle));
     Enki::Point lens = robot.pos + forward * camera_forward;
     std::vector<Occluder> near;
+    const double robot_reach = reach + body_radius;
     for (size_t other = 0; other < robots_.size(); other++) {
-        if (other == index || (robots_[other]->pos - lens).norm() > reach + body_radius)
+        // The square test first: beyond it, the distance is beyond too.
+        Enki::Vector offset = robots_[other]->pos - lens;
+        if (other == index || std::abs(offset.x) > robot_reach ||
+            std::abs(offset.y) > robot_reach || offset.norm() > robot_reach)
             continue;
         Occluder occluder;
         occluder.centre = robots_[other]->pos;

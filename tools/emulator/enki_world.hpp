@@ -31,6 +31,7 @@
 
 #include "arena_file.hpp"
 #include "battery.hpp"
+#include "partitioned_world.hpp"
 #include "remote_control.hpp"
 #include "sound_field.hpp"
 
@@ -181,7 +182,7 @@ class EnkiWorld
 
     Arena arena_;
     SoundField sound_field_;
-    std::unique_ptr<Enki::World> world_;
+    std::unique_ptr<PartitionedWorld> world_;
     // Robots then obstacles, constructed in place in one block.
     void *objects_block_ = nullptr;
     std::vector<EnkiEpuck *> robots_;

@@ -11,7 +11,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <functional>
+#include <thread>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -93,7 +95,23 @@ struct Options {
     bool drawn_starts = false;
     uint16_t control_port = 0; // 0: none
     uint16_t arena_feed = 0;   // port of the arena feed; 0: none
+    unsigned threads = 0;      // 0: as many as pay off (firmware_threads)
 };
+
+// Robots a thread should have at least for another thread to pay off: each
+// simulated millisecond the threads meet, which costs about what a few
+// robots' millisecond of firmware does.
+constexpr size_t robots_per_thread = 16;
+
+// The threads the arena's firmware runs on: as asked, else one per core
+// while each gets enough robots.
+unsigned firmware_threads(const Options &options, size_t robots)
+{
+    if (options.threads > 0)
+        return options.threads;
+    size_t cores = std::max(1u, std::thread::hardware_concurrency());
+    return unsigned(std::clamp<size_t>(robots / robots_per_thread, 1, cores));
+}
 
 [[noreturn]] void fail(const std::string &message)
 {
@@ -183,6 +201,14 @@ Options parse_options(int argc, char **argv)
                   "arena mode: seed of every random draw (default 1): the same arena,\n"
                   "seed and program give the same run, bit for bit, while no tool sends\n"
                   "frames")
+      ->type_name("N");
+    app
+      .add_option("--threads",
+                  options.threads,
+                  "arena mode: threads that run the robots' firmware (default: one per\n"
+                  "core, each with 16 robots or more); the run is the same, bit for bit,\n"
+                  "whatever their number")
+      ->check(CLI::Range(1, 64))
       ->type_name("N");
     std::string speed = "max";
     app
@@ -410,7 +436,11 @@ int run_arena(const Options &options,
     std::unique_ptr<aseba::arena::ArenaSimulation> simulation_owner;
     try {
         simulation_owner = std::make_unique<aseba::arena::ArenaSimulation>(
-          arena, options.seed, bytecode, memory_preparation(options));
+          arena,
+          options.seed,
+          bytecode,
+          memory_preparation(options),
+          firmware_threads(options, arena.robots.size()));
     } catch (const std::exception &error) {
         fail(error.what());
     }
@@ -476,6 +506,7 @@ int run_arena(const Options &options,
     const double status_period = terminal ? 0.5 : 10; // wall-clock seconds
     using clock = std::chrono::steady_clock;
     const auto start = clock::now();
+    const std::clock_t processor_start = std::clock();
     auto wall_seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
     double next_status = status_period;
     double next_feed = 0;
@@ -520,13 +551,19 @@ int run_arena(const Options &options,
         }
     }
     double wall = wall_seconds();
+    // Processor time, every thread's: unlike the wall clock, it does not
+    // depend on what else the computer runs.
+    double processor = double(std::clock() - processor_start) / CLOCKS_PER_SEC;
     std::printf("%sepuck-emu: stopped at %.1f simulated s after %.1f s (%.1fx real time), "
-                "%llu frames on the network\n",
+                "%llu frames on the network, %.2f s of processor time on %u thread%s\n",
                 terminal && !options.quiet ? "\n" : "",
                 simulation.seconds(),
                 wall,
                 simulation.seconds() / std::max(wall, 1e-9),
-                static_cast<unsigned long long>(network.frames_moved()));
+                static_cast<unsigned long long>(network.frames_moved()),
+                processor,
+                simulation.threads(),
+                simulation.threads() == 1 ? "" : "s");
     if (!options.quiet) {
         std::string line =
           status.line(simulation.seconds(), simulation.robot_count(), network.client_count());

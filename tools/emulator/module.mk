@@ -10,6 +10,7 @@ aseba_emulator_network_SOURCES := tools/emulator/network.cpp tools/emulator/netw
 # robots' memories (flash images, stored programs) kept between runs.
 LIBRARIES += aseba_arena
 aseba_arena_SOURCES := tools/emulator/arena_file.cpp tools/emulator/enki_world.cpp \
+                       tools/emulator/partitioned_world.cpp tools/emulator/worker_pool.cpp \
                        tools/emulator/arena_simulation.cpp tools/emulator/robot_memory.cpp \
                        tools/emulator/sound_field.cpp tools/emulator/battery.cpp \
                        tools/emulator/remote_control.cpp tools/emulator/arena_control.cpp \

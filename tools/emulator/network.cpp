@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <deque>
 #include <map>
+#include <memory>
 #include <stdexcept>
 
 extern "C" {
@@ -75,9 +76,12 @@ std::optional<Frame> FrameReader::next()
 namespace
 {
 
+// A frame on its way to every board: one copy, shared by their queues.
+using SharedFrame = std::shared_ptr<const Frame>;
+
 // Frames waiting for one board from one source.
 struct SourceQueue {
-    std::deque<Frame> frames;
+    std::deque<SharedFrame> frames;
     size_t bytes = 0;
     bool full = false; // a client's queue at its share: the client is not read
 };
@@ -298,7 +302,7 @@ struct Network::State final : Bus {
         return nullptr;
     }
 
-    void enqueue(Board &board, uint64_t source, const Frame &frame)
+    void enqueue(Board &board, uint64_t source, const SharedFrame &frame)
     {
         SourceQueue &queue = board.waiting[source];
         if (source == robots_source && queue.frames.size() >= ROBOT_FRAMES_PER_ROBOT) {
@@ -306,7 +310,7 @@ struct Network::State final : Bus {
             return;
         }
         queue.frames.push_back(frame);
-        queue.bytes += frame.size();
+        queue.bytes += frame->size();
         board.waiting_frames++;
         if (source != robots_source && !queue.full &&
             (queue.frames.size() >= CLIENT_FRAMES_PER_ROBOT ||
@@ -344,23 +348,26 @@ struct Network::State final : Bus {
     {
         count(frame);
         const bool user_event = read_u16(frame.data() + type_offset) < NODE_FIRST_SYSTEM_TYPE;
-        if (!user_event || relay_robot_events)
+        if (!user_event || relay_robot_events) {
+            auto shared = std::make_shared<const Frame>(frame);
             for (auto &board : boards)
                 if (board.get() != &from)
-                    enqueue(*board, robots_source, frame);
+                    enqueue(*board, robots_source, shared);
+        }
         send_to_clients(&from, nullptr, frame);
     }
 
     void broadcast_from_client(const Client &from, const Frame &frame)
     {
         count(frame);
+        auto shared = std::make_shared<const Frame>(frame);
         if (from.robot != nullptr) {
             // A client linked directly to one robot talks to it alone.
-            enqueue(*from.robot, from.number, frame);
+            enqueue(*from.robot, from.number, shared);
             return;
         }
         for (auto &board : boards)
-            enqueue(*board, from.number, frame);
+            enqueue(*board, from.number, shared);
         send_to_clients(nullptr, &from, frame);
     }
 
@@ -387,7 +394,7 @@ struct Network::State final : Bus {
             while (board->waiting_frames > 0) {
                 auto source = next_source(*board);
                 SourceQueue &queue = source->second;
-                const Frame &frame = queue.frames.front();
+                const Frame &frame = *queue.frames.front();
                 if (!host_board_link_deliver(board->board, frame.data(), uint16_t(frame.size())))
                     break;
                 queue.bytes -= frame.size();

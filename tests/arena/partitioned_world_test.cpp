@@ -1,0 +1,116 @@
+// The arena's grid-stepped Enki world against Enki's own step: the same
+// robots, obstacles and wheel commands give the same run, bit for bit, in a
+// crowd where robots keep bumping into each other, the obstacles and the
+// walls.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <vector>
+
+#include "tools/emulator/enki_world.hpp"
+#include "tools/emulator/partitioned_world.hpp"
+
+using aseba::arena::EnkiEpuck;
+using aseba::arena::PartitionedWorld;
+
+namespace
+{
+
+constexpr double side = 120; // cm
+constexpr size_t robot_count = 64;
+constexpr double spacing = 8; // cm between robot centres: a 0.6 cm gap
+constexpr double step_seconds = 0.01;
+constexpr int steps = 600;
+
+struct RobotRecord {
+    double x, y, angle;
+    double infrared[EnkiEpuck::ir_count];
+};
+
+struct CrowdRun {
+    std::vector<RobotRecord> robots;
+    unsigned collisions = 0;
+};
+
+// Runs the crowd in `world` (fresh, square, side x side); robots and
+// obstacles live in one block each, in order, as the arena keeps them.
+CrowdRun run_crowd(Enki::World &world)
+{
+    world.takeObjectOwnership = false;
+    world.setRandomSeed(11);
+    std::srand(11);
+    std::allocator<EnkiEpuck> robot_allocator;
+    EnkiEpuck *robots = robot_allocator.allocate(robot_count);
+    std::allocator<Enki::PhysicalObject> obstacle_allocator;
+    Enki::PhysicalObject *obstacles = obstacle_allocator.allocate(2);
+    const size_t columns = 8;
+    for (size_t i = 0; i < robot_count; i++) {
+        EnkiEpuck *robot = new (robots + i) EnkiEpuck(0.05, 0.5, false);
+        robot->pos =
+          Enki::Point(30 + spacing * double(i % columns), 30 + spacing * double(i / columns));
+        robot->angle = double(i * 37 % 360) * M_PI / 180;
+        world.addObject(robot);
+    }
+    new (obstacles) Enki::PhysicalObject;
+    obstacles[0].setRectangular(20, 4, 10, -1);
+    obstacles[0].pos = Enki::Point(60, 100);
+    obstacles[0].angle = 0.3;
+    world.addObject(&obstacles[0]);
+    new (obstacles + 1) Enki::PhysicalObject;
+    obstacles[1].setCylindric(6, 10, -1);
+    obstacles[1].pos = Enki::Point(100, 50);
+    world.addObject(&obstacles[1]);
+
+    CrowdRun run;
+    for (int step = 0; step < steps; step++) {
+        for (size_t i = 0; i < robot_count; i++) {
+            // Wheel commands that change now and then: robots push, turn
+            // and scatter.
+            int phase = (step / 100 + int(i)) % 4;
+            robots[i].leftSpeed = phase == 0 ? 12 : phase == 1 ? -6 : 10;
+            robots[i].rightSpeed = phase == 0 ? 12 : phase == 1 ? 8 : -4;
+        }
+        world.step(step_seconds);
+        for (size_t i = 0; i < robot_count; i++)
+            run.collisions += robots[i].collisions;
+    }
+    for (size_t i = 0; i < robot_count; i++) {
+        RobotRecord record{ robots[i].pos.x, robots[i].pos.y, robots[i].angle, {} };
+        for (unsigned sensor = 0; sensor < EnkiEpuck::ir_count; sensor++)
+            record.infrared[sensor] = robots[i].infrared[sensor].getValue();
+        run.robots.push_back(record);
+    }
+    world.objects.clear();
+    for (size_t i = 0; i < robot_count; i++)
+        robots[i].~EnkiEpuck();
+    obstacles[0].~PhysicalObject();
+    obstacles[1].~PhysicalObject();
+    robot_allocator.deallocate(robots, robot_count);
+    obstacle_allocator.deallocate(obstacles, 2);
+    return run;
+}
+
+} // namespace
+
+TEST(PartitionedWorld, StepsAsEnkiDoesBitForBit)
+{
+    Enki::World enki(side, side, Enki::Color::gray);
+    CrowdRun expected = run_crowd(enki);
+    PartitionedWorld partitioned(side, side, Enki::Color::gray);
+    CrowdRun got = run_crowd(partitioned);
+
+    // The crowd did collide, often.
+    EXPECT_GT(expected.collisions, 1000u);
+    EXPECT_EQ(got.collisions, expected.collisions);
+    ASSERT_EQ(got.robots.size(), expected.robots.size());
+    for (size_t i = 0; i < got.robots.size(); i++)
+        EXPECT_EQ(std::memcmp(&got.robots[i], &expected.robots[i], sizeof(RobotRecord)), 0)
+          << "robot " << i << " at " << got.robots[i].x << ", " << got.robots[i].y << ", Enki's at "
+          << expected.robots[i].x << ", " << expected.robots[i].y;
+    EXPECT_EQ(partitioned.margin_overruns(), 0u);
+}

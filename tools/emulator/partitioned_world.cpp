@@ -1,0 +1,243 @@
+// Enki's step over a grid (see partitioned_world.hpp).
+
+#include "partitioned_world.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <typeinfo>
+
+namespace aseba::arena
+{
+namespace
+{
+
+// How much nearer than their reach two objects are taken as a pair for the
+// collision pass (cm), against the moves of the pass itself.
+constexpr double collision_margin = 2;
+
+// Enki's step calls the objects' protected hooks; a class derived from the
+// object's class may name them, and calls through the member pointers are
+// virtual as Enki's are.
+struct ObjectHooks : Enki::PhysicalObject {
+    using Hook = void (Enki::PhysicalObject::*)(double, Enki::World *);
+    static constexpr Hook init_local = &ObjectHooks::initLocalInteractions;
+    static constexpr Hook init_global = &ObjectHooks::initGlobalInteractions;
+    static constexpr Hook with_walls = &ObjectHooks::doLocalWallsInteraction;
+    static constexpr Hook global = &ObjectHooks::doGlobalInteractions;
+    static constexpr Hook finalize_local = &ObjectHooks::finalizeLocalInteractions;
+    static constexpr Hook finalize_global = &ObjectHooks::finalizeGlobalInteractions;
+    static constexpr void (Enki::PhysicalObject::*with_object)(double,
+                                                               Enki::World *,
+                                                               Enki::PhysicalObject *) =
+      &ObjectHooks::doLocalInteractions;
+    static constexpr void (Enki::PhysicalObject::*control)(double) = &ObjectHooks::controlStep;
+};
+
+struct RobotInteractions : Enki::Robot {
+    static const std::vector<Enki::LocalInteraction *> &of(const Enki::Robot &robot)
+    {
+        return robot.*(&RobotInteractions::localInteractions);
+    }
+};
+
+// The physics hooks Enki's step calls are private to PhysicalObject (its
+// friend is World itself, not a class derived from it). An explicit
+// instantiation may name a private member (C++20 [temp.spec.general]/6): the
+// template below hands its pointer out through a friend function.
+template<typename Tag, typename Tag::Pointer member>
+struct PrivateMember {
+    friend typename Tag::Pointer pointer_to(Tag)
+    {
+        return member;
+    }
+};
+struct InitPhysics {
+    using Pointer = void (Enki::PhysicalObject::*)(double);
+    friend Pointer pointer_to(InitPhysics);
+};
+struct FinalizePhysics {
+    using Pointer = void (Enki::PhysicalObject::*)(double);
+    friend Pointer pointer_to(FinalizePhysics);
+};
+template struct PrivateMember<InitPhysics, &Enki::PhysicalObject::initPhysicsInteractions>;
+template struct PrivateMember<FinalizePhysics, &Enki::PhysicalObject::finalizePhysicsInteractions>;
+
+// How far object `object`'s local interactions reach (Robot: its longest,
+// Enki sorts them longest first); 0 for a plain object, which has none; -1
+// when unknown.
+double sensing_range(Enki::PhysicalObject *object)
+{
+    if (typeid(*object) == typeid(Enki::PhysicalObject))
+        return 0;
+    auto *robot = dynamic_cast<Enki::Robot *>(object);
+    if (!robot)
+        return -1;
+    const auto &interactions = RobotInteractions::of(*robot);
+    return interactions.empty() ? 0 : interactions.front()->getRange();
+}
+
+} // namespace
+
+PartitionedWorld::PartitionedWorld(double width, double height, const Enki::Color &wall_color)
+  : Enki::World(width, height, wall_color)
+{
+}
+
+void PartitionedWorld::take_objects()
+{
+    objects_.assign(objects.begin(), objects.end());
+    sensing_ranges_.resize(objects_.size());
+    largest_radius_ = 0;
+    double longest_range = 0;
+    for (size_t i = 0; i < objects_.size(); i++) {
+        sensing_ranges_[i] = sensing_range(objects_[i]);
+        longest_range = std::max(longest_range, sensing_ranges_[i]);
+        largest_radius_ = std::max(largest_radius_, objects_[i]->getRadius());
+    }
+    // Cells about as wide as the longest reach: a query looks at a few.
+    cell_size_ = std::max({ longest_range, 2 * collision_margin, 1.0 });
+    last_seen_.assign(objects_.size(), 0);
+    visit_ = 0;
+}
+
+void PartitionedWorld::build_grid()
+{
+    // The walls bound the grid; an object pushed past them lands in a border
+    // cell.
+    columns_ = std::max(1L, long(std::ceil(w / cell_size_)));
+    rows_ = std::max(1L, long(std::ceil(h / cell_size_)));
+    auto cell_range = [this](double low, double high, long count, long &first, long &last) {
+        first = std::clamp(long(std::floor(low / cell_size_)), 0L, count - 1);
+        last = std::clamp(long(std::floor(high / cell_size_)), 0L, count - 1);
+    };
+    // Counting sort of (cell, object) by cell, objects ascending within.
+    cell_starts_.assign(size_t(columns_ * rows_) + 1, 0);
+    for (int pass = 0; pass < 2; pass++) {
+        if (pass == 1) {
+            for (size_t c = 1; c < cell_starts_.size(); c++)
+                cell_starts_[c] += cell_starts_[c - 1];
+            cell_objects_.resize(cell_starts_.back());
+            cell_fill_.assign(cell_starts_.begin(), cell_starts_.end() - 1);
+        }
+        for (size_t i = 0; i < objects_.size(); i++) {
+            const Enki::PhysicalObject *object = objects_[i];
+            double radius = object->getRadius();
+            long x0, x1, y0, y1;
+            cell_range(object->pos.x - radius, object->pos.x + radius, columns_, x0, x1);
+            cell_range(object->pos.y - radius, object->pos.y + radius, rows_, y0, y1);
+            for (long y = y0; y <= y1; y++)
+                for (long x = x0; x <= x1; x++) {
+                    size_t cell = size_t(y * columns_ + x);
+                    if (pass == 0)
+                        cell_starts_[cell + 1]++;
+                    else
+                        cell_objects_[cell_fill_[cell]++] = uint32_t(i);
+                }
+        }
+    }
+}
+
+void PartitionedWorld::objects_near(size_t index, double reach, std::vector<uint32_t> &found)
+{
+    found.clear();
+    const Enki::PhysicalObject *object = objects_[index];
+    double around = object->getRadius() + reach;
+    long x0 = std::clamp(long(std::floor((object->pos.x - around) / cell_size_)), 0L, columns_ - 1);
+    long x1 = std::clamp(long(std::floor((object->pos.x + around) / cell_size_)), 0L, columns_ - 1);
+    long y0 = std::clamp(long(std::floor((object->pos.y - around) / cell_size_)), 0L, rows_ - 1);
+    long y1 = std::clamp(long(std::floor((object->pos.y + around) / cell_size_)), 0L, rows_ - 1);
+    if (++visit_ == 0) {
+        std::fill(last_seen_.begin(), last_seen_.end(), 0);
+        visit_ = 1;
+    }
+    for (long y = y0; y <= y1; y++)
+        for (long x = x0; x <= x1; x++) {
+            size_t cell = size_t(y * columns_ + x);
+            for (uint32_t k = cell_starts_[cell]; k < cell_starts_[cell + 1]; k++) {
+                uint32_t other = cell_objects_[k];
+                if (other == index || last_seen_[other] == visit_)
+                    continue;
+                last_seen_[other] = visit_;
+                double within = around + objects_[other]->getRadius();
+                if ((objects_[other]->pos - object->pos).norm2() <= within * within)
+                    found.push_back(other);
+            }
+        }
+    std::sort(found.begin(), found.end());
+}
+
+void PartitionedWorld::collide_nearby_pairs()
+{
+    build_grid();
+    std::vector<double> moved(objects_.size(), 0);
+    for (size_t i = 0; i < objects_.size(); i++) {
+        objects_near(i, collision_margin, found_);
+        for (uint32_t j : found_) {
+            if (j <= i)
+                continue;
+            Enki::PhysicalObject *first = objects_[i], *second = objects_[j];
+            Enki::Point first_before = first->pos, second_before = second->pos;
+            collideObjects(first, second);
+            moved[i] += (first->pos - first_before).norm();
+            moved[j] += (second->pos - second_before).norm();
+        }
+    }
+    if (!moved.empty() && *std::max_element(moved.begin(), moved.end()) > collision_margin / 2)
+        margin_overruns_++;
+}
+
+void PartitionedWorld::sense_nearby_objects(double dt)
+{
+    build_grid();
+    for (size_t i = 0; i < objects_.size(); i++) {
+        Enki::PhysicalObject *object = objects_[i];
+        double range = sensing_ranges_[i];
+        if (range == 0)
+            continue;
+        if (range < 0) {
+            for (size_t j = 0; j < objects_.size(); j++)
+                if (j != i)
+                    (object->*ObjectHooks::with_object)(dt, this, objects_[j]);
+            continue;
+        }
+        objects_near(i, range, found_);
+        for (uint32_t j : found_)
+            (object->*ObjectHooks::with_object)(dt, this, objects_[j]);
+    }
+}
+
+void PartitionedWorld::step(double dt, unsigned physics_oversampling)
+{
+    take_objects();
+    const double physics_dt = dt / double(physics_oversampling);
+    for (unsigned pass = 0; pass < physics_oversampling; pass++) {
+        for (Enki::PhysicalObject *object : objects_)
+            (object->*pointer_to(InitPhysics{}))(physics_dt);
+        collide_nearby_pairs();
+        for (Enki::PhysicalObject *object : objects_) {
+            if (wallsType == WALLS_SQUARE)
+                collideWithSquareWalls(object);
+            else if (wallsType == WALLS_CIRCULAR)
+                collideWithCircularWalls(object);
+            (object->*pointer_to(FinalizePhysics{}))(physics_dt);
+        }
+    }
+    for (Enki::PhysicalObject *object : objects_) {
+        (object->*ObjectHooks::init_local)(dt, this);
+        (object->*ObjectHooks::init_global)(dt, this);
+    }
+    sense_nearby_objects(dt);
+    for (Enki::PhysicalObject *object : objects_) {
+        if (wallsType != WALLS_NONE)
+            (object->*ObjectHooks::with_walls)(dt, this);
+        (object->*ObjectHooks::global)(dt, this);
+        (object->*ObjectHooks::finalize_local)(dt, this);
+        (object->*ObjectHooks::finalize_global)(dt, this);
+        (object->*ObjectHooks::control)(dt);
+    }
+    controlStep(dt);
+    if (bluetoothBase)
+        bluetoothBase->step(dt, this);
+}
+
+} // namespace aseba::arena
