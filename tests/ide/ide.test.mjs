@@ -520,6 +520,33 @@ test("a hundred robots: each in the network view and in a tab, found by the filt
     }
 });
 
+test("the arena view shows the simulated robots live: they move, and a LED set in the page lights there", { timeout: 60000 }, async () => {
+    const arena = await startEmulator({ robots: 2, arena: "default" });
+    started.push(arena);
+    const arenaIde = await startIde({ targets: [`tcp:localhost;${arena.port}`], arenaFeed: arena.feedPort });
+    started.push(arenaIde);
+    const viewer = await openIde(browser, arenaIde.url, { robots: 2 });
+    try {
+        await viewer.locator(".arena-view canvas").waitFor();
+        const state = () => viewer.evaluate(() => window.asebaIde.model.arenaState);
+        await waitFor(async () => (await state())?.robots?.length === 2, "two robots in the arena view", 20000);
+        const geometry = await viewer.evaluate(() => window.asebaIde.model.arena);
+        assert.deepEqual([geometry.width, geometry.height, geometry.areas.length], [100, 100, 3]); // docs/arena-format.md, the default arena
+        // The robots move: a wheel speed set from the page turns into positions.
+        const before = (await state()).robots.find((robot) => robot.id === 1);
+        await aseba(arena.port, "vars", "leftSpeed=500", "rightSpeed=500", "leds=0,0,1,0,0,0,0,0");
+        await waitFor(async () => {
+            const now = (await state()).robots.find((robot) => robot.id === 1);
+            return Math.hypot(now.x - before.x, now.y - before.y) > 1 && now.leds[2] === 1;
+        }, "robot 1 to move and light its LED 2 in the arena view", 20000);
+        assert.deepEqual(viewer.errors, []);
+    } finally {
+        await viewer.context().close();
+        await arenaIde.stop();
+        await arena.stop();
+    }
+});
+
 test("the server and the emulators stop cleanly, with no sanitizer report", TIMEOUT, async () => {
     await ide.stop();
     await emulator.stop();
