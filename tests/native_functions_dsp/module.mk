@@ -21,7 +21,7 @@ dsp_natives_test_LDLIBS := -lasebacompiler -lasebacommon -lgtest -lgtest_main -p
 # One DSP native call, for instruction counts under callgrind (see the file).
 PROGRAMS += bench-dsp
 bench-dsp_SOURCES := tests/native_functions_dsp/dsp_bench.cpp tests/native_functions_dsp/dsp_node.cpp
-bench-dsp_LIBS := aseba_natives aseba_vm
+bench-dsp_LIBS := aseba_compiler aseba_natives aseba_vm
 
 # hal/dspic30/dspic30_dsp_kernel.c (the dsPIC30F build's DSP-engine inner
 # loop) compiled on the host against a model of XC16's DSP builtins (included
