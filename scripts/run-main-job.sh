@@ -7,14 +7,15 @@
 # arena view fed on port 33334). Paced to real time; stop it with Ctrl-C.
 # Usage: run-main-job.sh BUILD_HOST_DIR [epuck-emu options...]
 set -euo pipefail
-bin=$1/bin
+host=$1
+bin=$host/bin
 shift
 network_port=33333
 feed_port=33334
 ide_port=${IDE_PORT:-33380}
 # The IDE edits a copy of the controller, so that Save never changes the
 # example; the copy is kept between runs.
-project=$1/../run/paper-annex.aesl
+project=$(dirname "$host")/run/paper-annex.aesl
 mkdir -p "$(dirname "$project")"
 [ -e "$project" ] || cp examples/paper-annex.aesl "$project"
 
