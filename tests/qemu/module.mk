@@ -61,6 +61,7 @@ $(BUILD)/host-sanitize/tests/qemu_node_test: | $(STM32F4_IMAGE).elf $(BUILD)/hos
 
 # The VM's instructions per bytecode step on the Cortex-M4, for `make bench`.
 PROGRAMS += bench-qemu
-bench-qemu_SOURCES := tests/qemu/qemu_bench.cpp tests/qemu/remote_vm.cpp $(QEMU_REMOTE_SOURCES)
+bench-qemu_SOURCES := tests/qemu/qemu_bench.cpp tests/qemu/remote_vm.cpp vm/vm_native_text.c \
+                      $(QEMU_REMOTE_SOURCES)
 bench-qemu_LIBS := test_support aseba_compiler aseba_natives
 $(BUILD)/host/bin/bench-qemu: | $(STM32F4_HARNESS).elf

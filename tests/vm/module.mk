@@ -5,7 +5,7 @@
 VM_TEST_GTEST_LDLIBS := -lgtest -lgtest_main -pthread
 
 LIBRARIES += aseba_vm_switch
-aseba_vm_switch_SOURCES := tests/vm/vm_switch.c vm/vm_debug.c vm/vm_verify.c
+aseba_vm_switch_SOURCES := tests/vm/vm_switch.c vm/vm_debug.c vm/vm_verify.c vm/vm_native_text.c
 
 VM_PROGRAM_TEST_SOURCES := tests/vm/programs_test.cpp tests/vm/program_script.cpp \
                            tests/vm/operators_test.cpp tests/vm/assembler_test.cpp \
