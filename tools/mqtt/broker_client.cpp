@@ -21,8 +21,9 @@ namespace
 {
 
 constexpr std::chrono::milliseconds RECONNECT_DELAY{ 1000 };
-constexpr int LOOP_TIMEOUT_MS = 100;                       // how soon the thread sees a stop
-constexpr std::chrono::milliseconds GOODBYE_LIMIT{ 1000 }; // to send the last words
+constexpr int LOOP_TIMEOUT_MS = 100;                         // how soon the thread sees a stop
+constexpr std::chrono::milliseconds GOODBYE_LIMIT{ 1000 };   // to send the last words
+constexpr std::chrono::milliseconds INBOX_FULL_WAIT{ 2000 }; // then a full inbox drops
 
 std::once_flag library_initialised;
 
@@ -281,9 +282,12 @@ void BrokerClient::flush_pending()
 
 std::vector<InboundMessage> BrokerClient::take_messages()
 {
-    std::lock_guard lock(mutex_);
     std::vector<InboundMessage> messages;
-    messages.swap(inbox_);
+    {
+        std::lock_guard lock(mutex_);
+        messages.swap(inbox_);
+    }
+    inbox_space_.notify_all();
     return messages;
 }
 
@@ -329,11 +333,19 @@ void BrokerClient::on_message(struct mosquitto *,
 {
     auto &self = *static_cast<BrokerClient *>(self_pointer);
     {
-        std::lock_guard lock(self.mutex_);
+        std::unique_lock lock(self.mutex_);
         if (size_t(message->payloadlen) > self.options_.payload_limit) {
             ++self.drops_.oversized;
             return;
         }
+        // A full inbox first holds libmosquitto's thread back for a while,
+        // so that the broker keeps what it sends (TCP slows it down) while
+        // the owner is merely late; only a sender that outlasts that wait
+        // loses messages.
+        if (self.inbox_.size() >= self.options_.inbox_limit)
+            self.inbox_space_.wait_for(lock, INBOX_FULL_WAIT, [&] {
+                return self.inbox_.size() < self.options_.inbox_limit;
+            });
         if (self.inbox_.size() >= self.options_.inbox_limit) {
             ++self.drops_.inbox_full;
             return;

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <atomic>
+#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -155,6 +156,7 @@ class BrokerClient
     std::vector<std::string> filters_;
     int filters_qos_ = 1;
     std::vector<InboundMessage> inbox_;
+    std::condition_variable inbox_space_; // the owner took the inbox's messages
     std::string last_error_;
     BrokerDrops drops_;
 };
