@@ -158,3 +158,27 @@ TEST(CommandLines, ACompileErrorIsStatusOne)
     EXPECT_EQ(result.exit_code, 1);
     EXPECT_TRUE(contains(result.err, "wrong.aseba:1:")) << result.err;
 }
+
+// A global event declared on a command line holds at most the protocol's 258
+// words of arguments (protocol.md §2); the console once wrapped a larger size
+// into 16 bits.
+TEST(CommandLines, AnEventLargerThanTheProtocolIsAUsageError)
+{
+    ScratchFolder scratch;
+    std::string script = scratch.write("script.aseba", "var x = 1\n");
+    CommandResult largest = run_program("asebac", { "--event", "big:258", script }, scratch.path());
+    EXPECT_EQ(largest.exit_code, 0) << largest.err;
+    // Port 1: nobody listens there; the command line is refused first.
+    const std::vector<std::vector<std::string>> runs = {
+        { "asebac", "--event", "big:259", script },
+        { "aseba", "-t", "tcp:127.0.0.1;1", "load", script, "--event", "big:65794" },
+        { "aseba-mqtt", "-t", "tcp:127.0.0.1;1", "--event", "big:259" },
+        { "aseba", "-t", "tcp:127.0.0.1;1", "load", script, "--event", ":2" },
+    };
+    for (const auto &run : runs) {
+        std::vector<std::string> arguments(run.begin() + 1, run.end());
+        CommandResult result = run_program(run.front(), arguments, scratch.path());
+        EXPECT_EQ(result.exit_code, 2) << run.front() << " " << arguments.back() << result.err;
+        EXPECT_TRUE(contains(result.err, "--event")) << run.front() << ": " << result.err;
+    }
+}

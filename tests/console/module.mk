@@ -19,6 +19,6 @@ console_test_LDLIBS := -lgtest -lgtest_main -pthread
 
 # The test starts these programs of its own build (order-only: they are
 # run, not linked).
-CONSOLE_TEST_PROGRAMS := epuck-emu aseba asebac epuck-image
+CONSOLE_TEST_PROGRAMS := epuck-emu aseba asebac epuck-image aseba-mqtt
 $(foreach v,$(VARIANTS),$(eval \
   $(BUILD)/$(v)/tests/console_test: | $(foreach p,$(CONSOLE_TEST_PROGRAMS),$(BUILD)/$(v)/bin/$(p))))

@@ -129,9 +129,10 @@ Options parse_options(int argc, char **argv)
       ->check(CLI::IsMember({ "binary", "hex", "c" }))
       ->type_name("FORMAT");
     app.add_flag("--listing", options.listing, "print the disassembly with source lines");
-    app.add_flag("--variables",
-                 options.variables,
-                 "print the variable map: name, address, size (locals too, with their handler or subroutine)");
+    app.add_flag(
+      "--variables",
+      options.variables,
+      "print the variable map: name, address, size (locals too, with their handler or subroutine)");
 
     CLI::App *run = app.add_subcommand("run", "compile FILE and run it on the host VM");
     formatter->set_usage(run, "usage: asebac run [options] FILE", RUN_DESCRIPTION);
@@ -270,10 +271,11 @@ int main(int argc, char **argv)
             to_send.push_back({ name, arguments });
             continue;
         }
-        std::optional<long> size = rest.empty() ? 0 : parse_integer(rest);
-        if (!size || *size < 0 || *size > 258)
-            usage_error("bad event size in --event " + option);
-        definitions.events.push_back({ name, static_cast<uint16_t>(*size) });
+        try {
+            definitions.events.push_back(parse_event_declaration(option));
+        } catch (const std::invalid_argument &error) {
+            usage_error(error.what());
+        }
     }
     for (const auto &option : options.constant_options) {
         size_t equal = option.find('=');
@@ -308,7 +310,10 @@ int main(int argc, char **argv)
             std::printf("%-24s %7u %5u\n", variable.name.c_str(), variable.address, variable.size);
         for (const auto &local : result.locals) // docs/language.md: where locals live
             std::printf("%-24s %7u %5u  local of %s\n",
-                        local.name.c_str(), local.address, local.size, local.owner.c_str());
+                        local.name.c_str(),
+                        local.address,
+                        local.size,
+                        local.owner.c_str());
         std::printf("%u of %u words used by variables (%u by the locals, shared)\n",
                     result.allocated_variables,
                     target.variables_size,

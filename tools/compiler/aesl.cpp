@@ -16,7 +16,6 @@ namespace aseba
 namespace
 {
 
-constexpr long MAX_EVENT_WORDS = 258; // protocol.md §2
 constexpr long INT16_MIN_VALUE = -32768;
 constexpr long INT16_MAX_VALUE = 32767;
 constexpr long NODE_ID_MAX = 0xFFFF;

@@ -12,6 +12,7 @@ aseba_compiler_SOURCES := \
     tools/compiler/codegen.cpp \
     tools/compiler/linker.cpp \
     tools/compiler/compiler.cpp \
+    tools/compiler/target.cpp \
     tools/compiler/target_presets.cpp \
     tools/compiler/target_json.cpp \
     tools/compiler/aesl.cpp \

@@ -49,6 +49,13 @@ struct GlobalEvent {
     uint16_t size = 0; // words of arguments
 };
 
+// The protocol's longest event: 258 words of arguments (protocol.md §2).
+constexpr uint16_t MAX_EVENT_WORDS = 258;
+
+// A global event as command lines declare it, NAME or NAME:SIZE (size 0 when
+// omitted); throws std::invalid_argument saying what is wrong.
+GlobalEvent parse_event_declaration(const std::string &text);
+
 struct Constant {
     std::string name;
     int16_t value = 0;

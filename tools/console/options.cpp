@@ -145,27 +145,6 @@ waits for a new one. Exit status 1 when any robot failed.)" },
       "Shows the help of COMMAND, or of aseba." },
 };
 
-unsigned long parse_count(const std::string &option, const std::string &text)
-{
-    char *end = nullptr;
-    unsigned long value = std::strtoul(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || text[0] == '-')
-        throw UsageError(option + " expects a whole number, not '" + text + "'");
-    return value;
-}
-
-GlobalEvent parse_event_declaration(const std::string &text)
-{
-    GlobalEvent event;
-    size_t colon = text.find(':');
-    event.name = text.substr(0, colon);
-    if (event.name.empty())
-        throw UsageError("--event expects NAME[:SIZE], not '" + text + "'");
-    if (colon != std::string::npos)
-        event.size = uint16_t(parse_count("--event", text.substr(colon + 1)));
-    return event;
-}
-
 // Milliseconds, seconds and counts: not negative (the type name says which).
 CLI::Validator non_negative()
 {
@@ -308,8 +287,12 @@ struct CommandLine {
             options.duration_seconds = duration_seconds;
         if (commands["watch"]->get_option("--interval")->count() > 0)
             options.interval = Milliseconds(interval_ms);
-        for (const std::string &text : event_declarations)
-            options.declared.events.push_back(parse_event_declaration(text));
+        try {
+            for (const std::string &text : event_declarations)
+                options.declared.events.push_back(parse_event_declaration(text));
+        } catch (const std::invalid_argument &error) {
+            throw UsageError(error.what());
+        }
     }
 
     bool any_parsed(const std::string &option) const

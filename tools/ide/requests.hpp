@@ -26,8 +26,6 @@ constexpr size_t MAX_SCRIPT_BYTES = 256 * 1024;
 constexpr size_t MAX_PROJECT_BYTES = 2 * 1024 * 1024;
 // Global events and constants a project may declare.
 constexpr size_t MAX_DEFINITIONS = 1024;
-// The protocol's longest event (protocol.md §2: 258 words of arguments).
-constexpr uint16_t MAX_EVENT_WORDS = 258;
 
 // A message that is not a request the server understands; what() says why.
 class RequestError : public std::runtime_error

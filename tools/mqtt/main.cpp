@@ -54,24 +54,6 @@ std::string host_name()
     return text;
 }
 
-GlobalEvent parse_event_declaration(const std::string &text)
-{
-    GlobalEvent event;
-    size_t colon = text.find(':');
-    event.name = text.substr(0, colon);
-    if (event.name.empty())
-        throw CLI::ValidationError("--event", "expects NAME[:SIZE], not '" + text + "'");
-    if (colon != std::string::npos) {
-        std::string size = text.substr(colon + 1);
-        char *end = nullptr;
-        unsigned long value = std::strtoul(size.c_str(), &end, 10);
-        if (size.empty() || *end != '\0' || value > client::MAX_EVENT_WORDS)
-            throw CLI::ValidationError("--event", "SIZE must be a number of words up to 258");
-        event.size = uint16_t(value);
-    }
-    return event;
-}
-
 struct CommandLine {
     BridgeOptions options;
     std::string broker_url = "mqtt://localhost:1883";
@@ -221,7 +203,7 @@ CommandLine parse(int argc, char **argv)
     try {
         for (const std::string &text : line.event_declarations)
             options.declared.events.push_back(parse_event_declaration(text));
-    } catch (const CLI::ValidationError &error) {
+    } catch (const std::invalid_argument &error) {
         usage_error(error.what());
     }
     return line;
