@@ -9,10 +9,9 @@
 #include "bootloader/bytecode_store.h"
 #include "epuck_natives.h"
 
-// The link must keep a whole frame in each direction, and the store must
-// hold the whole bytecode memory.
+// The link must keep a whole frame of what arrives while the main loop waits
+// for a frame to be sent, and the store must hold the whole bytecode memory.
 typedef char link_receives_a_whole_frame[HAL_LINK_RECEIVE_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
-typedef char link_queues_a_whole_frame[HAL_LINK_TRANSMIT_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
 typedef char
   store_holds_the_bytecode[STORE_BYTECODE_CAPACITY_WORDS >= EPUCK_BYTECODE_WORDS ? 1 : -1];
 
@@ -35,10 +34,9 @@ const node_description epuck_description = {
     &epuck_native_table,
 };
 
-// The node streams its frames to the link's transmit buffer. The main loop
-// polls the node only when a whole frame fits, so this waits only when one
-// poll writes more than the buffer holds (the description, an event flood),
-// for the link's interrupt to drain it.
+// The node streams its frames to the link's transmit buffer, which may be
+// smaller than a frame: this waits, in order, for the link's interrupt to
+// drain it. Received bytes wait in the link's receive buffer meanwhile.
 static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bool frame_complete)
 {
     epuck_firmware *firmware = context;
@@ -169,10 +167,6 @@ bool epuck_firmware_poll(epuck_firmware *firmware)
     raise_local_events(firmware, epuck_robot_sense(firmware->robot, &firmware->variables.named));
     update_timer(firmware, now);
 
-    // The VM and the protocol only when a whole frame can be queued, so
-    // that an answer never waits for the link.
-    if (hal_link_send_room(firmware->board) < NODE_MAX_FRAME)
-        return firmware->link_count != 0;
     busy = node_poll(&firmware->node, now);
     return busy || firmware->link_count != 0;
 }

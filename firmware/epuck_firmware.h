@@ -48,10 +48,10 @@ void epuck_firmware_init(epuck_firmware *firmware,
                          uint16_t node_id);
 
 // One pass of the main loop: link, variables to the robot and back, local
-// events, VM. Never waits, except when the node writes more at once than the
-// link's transmit buffer holds (the description, an event flood): it then
-// waits for the buffer to drain. Returns whether more work is waiting (when
-// false the caller may idle until the next input or tick).
+// events, VM. Never waits, except when the node sends more than the link's
+// transmit buffer holds at once (on the e-puck, any frame over 32 bytes): it
+// then waits for the buffer to drain. Returns whether more work is waiting
+// (when false the caller may idle until the next input or tick).
 bool epuck_firmware_poll(epuck_firmware *firmware);
 
 // Starts `count` words of bytecode as a stored program starts at boot: init

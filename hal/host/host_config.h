@@ -17,7 +17,7 @@
 // The link: the robot's rings (hal/dspic30/dspic30_config.h). The host board
 // hands what is sent to its output at once, so its transmit ring never fills.
 #define HAL_LINK_RECEIVE_CAPACITY  1024u
-#define HAL_LINK_TRANSMIT_CAPACITY 544u
+#define HAL_LINK_TRANSMIT_CAPACITY 32u
 
 // The simulated data EEPROM, kept in the memory file beside the flash.
 #define HOST_EEPROM_WORDS 2048u
