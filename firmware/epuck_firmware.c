@@ -111,8 +111,6 @@ void epuck_firmware_init(epuck_firmware *firmware,
     hooks.context = firmware;
     node_init(&firmware->node, node_id, &epuck_description, &memory, &transport, &hooks);
     firmware->variables.named.cam_line[0] = EPUCK_CAM_LINE_AT_BOOT;
-    firmware->link_start = 0;
-    firmware->link_count = 0;
     firmware->timer_period_ms = 0;
     firmware->next_timer_ms = 0;
     start_stored_program(firmware);
@@ -146,29 +144,34 @@ static void update_timer(epuck_firmware *firmware, uint32_t now)
         firmware->next_timer_ms = now + (uint32_t)(int32_t)period;
 }
 
+// Moves received bytes from the link into the node's frame, one at a time so
+// that none has to wait anywhere between the two, until the link is empty
+// or a whole frame waits for the node. Returns whether the node stopped
+// taking them (the link may hold more for after node_poll).
+static bool receive_from_link(epuck_firmware *firmware, uint32_t now)
+{
+    uint8_t byte;
+
+    while (node_receive_ready(&firmware->node)) {
+        if (hal_link_receive(firmware->board, &byte, 1) == 0)
+            return false;
+        node_receive_byte(&firmware->node, byte, now);
+    }
+    return true;
+}
+
 bool epuck_firmware_poll(epuck_firmware *firmware)
 {
     uint32_t now = hal_milliseconds(firmware->board);
+    bool link_waiting = receive_from_link(firmware, now);
     bool busy;
-
-    if (firmware->link_count == 0) {
-        firmware->link_start = 0;
-        firmware->link_count =
-          hal_link_receive(firmware->board, firmware->link_bytes, EPUCK_LINK_CHUNK);
-    }
-    if (firmware->link_count != 0) {
-        uint16_t taken = node_receive(
-          &firmware->node, firmware->link_bytes + firmware->link_start, firmware->link_count, now);
-        firmware->link_start += taken;
-        firmware->link_count -= taken;
-    }
 
     epuck_robot_actuate(firmware->robot, &firmware->variables.named);
     raise_local_events(firmware, epuck_robot_sense(firmware->robot, &firmware->variables.named));
     update_timer(firmware, now);
 
     busy = node_poll(&firmware->node, now);
-    return busy || firmware->link_count != 0;
+    return busy || link_waiting;
 }
 
 void epuck_firmware_start_program(epuck_firmware *firmware,

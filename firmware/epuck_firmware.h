@@ -15,9 +15,6 @@
 #include "hal/hal.h"
 #include "vm/node.h"
 
-// Bytes taken from the link per pass of the main loop.
-#define EPUCK_LINK_CHUNK 32u
-
 typedef struct epuck_firmware {
     hal_board *board;
     epuck_robot *robot;
@@ -28,10 +25,6 @@ typedef struct epuck_firmware {
         int16_t words[EPUCK_VARIABLES_WORDS];
         epuck_named_variables named;
     } variables;
-    // Received bytes the node could not take yet (a frame was waiting).
-    uint8_t link_bytes[EPUCK_LINK_CHUNK];
-    uint16_t link_start;
-    uint16_t link_count;
     // The `timer` event: the period it runs with (0 = off) and its next due time.
     int16_t timer_period_ms;
     uint32_t next_timer_ms;
