@@ -422,8 +422,8 @@ TEST_F(Dspic30, CameraStepsNeverWaitForAFrame)
 {
     constexpr uint16_t PORTC = TRISC + 2;
     chip.sfr(PORTC) = 0; // VSYNC (RC4, §3.5) inactive: no frame begins
-    uint8_t bytes[4] = {};
-    epuck_board_camera_start(&board, 10, bytes, sizeof bytes);
+    uint8_t bytes[2 * EPUCK_CAMERA_PIXEL_BYTES] = {};
+    epuck_board_camera_start(&board, 10, bytes, 2);
     for (int step = 0; step < 5; step++)
         EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
     for (int tick = 0; tick < 520; tick++) // Timer1 ticks of 1/1024 s: 508 ms
