@@ -34,9 +34,28 @@ const node_description epuck_description = {
     &epuck_native_table,
 };
 
+// Moves received bytes from the link into the node's frame, one at a time so
+// that none has to wait anywhere between the two, until the link is empty
+// or a whole frame waits for the node. Returns whether the node stopped
+// taking them (the link may hold more for after node_poll).
+static bool receive_from_link(epuck_firmware *firmware, uint32_t now)
+{
+    uint8_t byte;
+
+    while (node_receive_ready(&firmware->node)) {
+        if (hal_link_receive(firmware->board, &byte, 1) == 0)
+            return false;
+        node_receive_byte(&firmware->node, byte, now);
+    }
+    return true;
+}
+
 // The node streams its frames to the link's transmit buffer, which may be
 // smaller than a frame: this waits, in order, for the link's interrupt to
-// drain it. Received bytes wait in the link's receive buffer meanwhile.
+// drain it. Meanwhile received bytes go on into the node's frame whenever
+// it takes them (not while it handles one: node_receive_ready), so that the
+// link's receive buffer fills only while the node holds a whole frame.
+// node_poll handles a frame completed here after its VM run, as any other.
 static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bool frame_complete)
 {
     epuck_firmware *firmware = context;
@@ -48,6 +67,7 @@ static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bo
         count = (uint16_t)(count - taken);
         if (count == 0)
             return;
+        receive_from_link(firmware, hal_milliseconds(firmware->board));
         hal_idle(firmware->board);
     }
 }
@@ -142,22 +162,6 @@ static void update_timer(epuck_firmware *firmware, uint32_t now)
     firmware->next_timer_ms += (uint32_t)(int32_t)period;
     if ((int32_t)(now - firmware->next_timer_ms) >= 0) // fell behind: do not catch up
         firmware->next_timer_ms = now + (uint32_t)(int32_t)period;
-}
-
-// Moves received bytes from the link into the node's frame, one at a time so
-// that none has to wait anywhere between the two, until the link is empty
-// or a whole frame waits for the node. Returns whether the node stopped
-// taking them (the link may hold more for after node_poll).
-static bool receive_from_link(epuck_firmware *firmware, uint32_t now)
-{
-    uint8_t byte;
-
-    while (node_receive_ready(&firmware->node)) {
-        if (hal_link_receive(firmware->board, &byte, 1) == 0)
-            return false;
-        node_receive_byte(&firmware->node, byte, now);
-    }
-    return true;
 }
 
 bool epuck_firmware_poll(epuck_firmware *firmware)
