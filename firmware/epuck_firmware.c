@@ -9,10 +9,9 @@
 #include "bootloader/bytecode_store.h"
 #include "epuck_natives.h"
 
-// The link must keep a whole frame in each direction, and the store must
-// hold the whole bytecode memory.
+// The link must keep a whole frame of what arrives while the main loop waits
+// for a frame to be sent, and the store must hold the whole bytecode memory.
 typedef char link_receives_a_whole_frame[HAL_LINK_RECEIVE_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
-typedef char link_queues_a_whole_frame[HAL_LINK_TRANSMIT_CAPACITY >= NODE_MAX_FRAME ? 1 : -1];
 typedef char
   store_holds_the_bytecode[STORE_BYTECODE_CAPACITY_WORDS >= EPUCK_BYTECODE_WORDS ? 1 : -1];
 
@@ -35,10 +34,28 @@ const node_description epuck_description = {
     &epuck_native_table,
 };
 
-// The node streams its frames to the link's transmit buffer. The main loop
-// polls the node only when a whole frame fits, so this waits only when one
-// poll writes more than the buffer holds (the description, an event flood),
-// for the link's interrupt to drain it.
+// Moves received bytes from the link into the node's frame, one at a time so
+// that none has to wait anywhere between the two, until the link is empty
+// or a whole frame waits for the node. Returns whether the node stopped
+// taking them (the link may hold more for after node_poll).
+static bool receive_from_link(epuck_firmware *firmware, uint32_t now)
+{
+    uint8_t byte;
+
+    while (node_receive_ready(&firmware->node)) {
+        if (hal_link_receive(firmware->board, &byte, 1) == 0)
+            return false;
+        node_receive_byte(&firmware->node, byte, now);
+    }
+    return true;
+}
+
+// The node streams its frames to the link's transmit buffer, which may be
+// smaller than a frame: this waits, in order, for the link's interrupt to
+// drain it. Meanwhile received bytes go on into the node's frame whenever
+// it takes them (not while it handles one: node_receive_ready), so that the
+// link's receive buffer fills only while the node holds a whole frame.
+// node_poll handles a frame completed here after its VM run, as any other.
 static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bool frame_complete)
 {
     epuck_firmware *firmware = context;
@@ -50,6 +67,7 @@ static void send_to_link(void *context, const uint8_t *bytes, uint16_t count, bo
         count = (uint16_t)(count - taken);
         if (count == 0)
             return;
+        receive_from_link(firmware, hal_milliseconds(firmware->board));
         hal_idle(firmware->board);
     }
 }
@@ -113,8 +131,6 @@ void epuck_firmware_init(epuck_firmware *firmware,
     hooks.context = firmware;
     node_init(&firmware->node, node_id, &epuck_description, &memory, &transport, &hooks);
     firmware->variables.named.cam_line[0] = EPUCK_CAM_LINE_AT_BOOT;
-    firmware->link_start = 0;
-    firmware->link_count = 0;
     firmware->timer_period_ms = 0;
     firmware->next_timer_ms = 0;
     start_stored_program(firmware);
@@ -151,30 +167,15 @@ static void update_timer(epuck_firmware *firmware, uint32_t now)
 bool epuck_firmware_poll(epuck_firmware *firmware)
 {
     uint32_t now = hal_milliseconds(firmware->board);
+    bool link_waiting = receive_from_link(firmware, now);
     bool busy;
-
-    if (firmware->link_count == 0) {
-        firmware->link_start = 0;
-        firmware->link_count =
-          hal_link_receive(firmware->board, firmware->link_bytes, EPUCK_LINK_CHUNK);
-    }
-    if (firmware->link_count != 0) {
-        uint16_t taken = node_receive(
-          &firmware->node, firmware->link_bytes + firmware->link_start, firmware->link_count, now);
-        firmware->link_start += taken;
-        firmware->link_count -= taken;
-    }
 
     epuck_robot_actuate(firmware->robot, &firmware->variables.named);
     raise_local_events(firmware, epuck_robot_sense(firmware->robot, &firmware->variables.named));
     update_timer(firmware, now);
 
-    // The VM and the protocol only when a whole frame can be queued, so
-    // that an answer never waits for the link.
-    if (hal_link_send_room(firmware->board) < NODE_MAX_FRAME)
-        return firmware->link_count != 0;
     busy = node_poll(&firmware->node, now);
-    return busy || firmware->link_count != 0;
+    return busy || link_waiting;
 }
 
 void epuck_firmware_start_program(epuck_firmware *firmware,

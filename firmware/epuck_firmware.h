@@ -15,9 +15,6 @@
 #include "hal/hal.h"
 #include "vm/node.h"
 
-// Bytes taken from the link per pass of the main loop.
-#define EPUCK_LINK_CHUNK 32u
-
 typedef struct epuck_firmware {
     hal_board *board;
     epuck_robot *robot;
@@ -28,10 +25,6 @@ typedef struct epuck_firmware {
         int16_t words[EPUCK_VARIABLES_WORDS];
         epuck_named_variables named;
     } variables;
-    // Received bytes the node could not take yet (a frame was waiting).
-    uint8_t link_bytes[EPUCK_LINK_CHUNK];
-    uint16_t link_start;
-    uint16_t link_count;
     // The `timer` event: the period it runs with (0 = off) and its next due time.
     int16_t timer_period_ms;
     uint32_t next_timer_ms;
@@ -48,10 +41,10 @@ void epuck_firmware_init(epuck_firmware *firmware,
                          uint16_t node_id);
 
 // One pass of the main loop: link, variables to the robot and back, local
-// events, VM. Never waits, except when the node writes more at once than the
-// link's transmit buffer holds (the description, an event flood): it then
-// waits for the buffer to drain. Returns whether more work is waiting (when
-// false the caller may idle until the next input or tick).
+// events, VM. Never waits, except when the node sends more than the link's
+// transmit buffer holds at once (on the e-puck, any frame over 32 bytes): it
+// then waits for the buffer to drain. Returns whether more work is waiting
+// (when false the caller may idle until the next input or tick).
 bool epuck_firmware_poll(epuck_firmware *firmware);
 
 // Starts `count` words of bytecode as a stored program starts at boot: init

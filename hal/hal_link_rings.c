@@ -2,15 +2,15 @@
 
 #include "hal_link_rings.h"
 
-#define RECEIVE_MASK   (HAL_LINK_RECEIVE_CAPACITY - 1u)
+#define RECEIVE_SLOTS  (HAL_LINK_RECEIVE_CAPACITY + 1u)
 #define TRANSMIT_SLOTS (HAL_LINK_TRANSMIT_CAPACITY + 1u)
-typedef char
-  receive_capacity_is_a_power_of_two[(HAL_LINK_RECEIVE_CAPACITY & RECEIVE_MASK) == 0 ? 1 : -1];
 
-static uint16_t next_transmit_slot(uint16_t index)
+// The slot after `index` in a ring of `slots`; a compare rather than a mask,
+// so that a ring need not be a power of two (the e-puck's is one frame).
+static uint16_t next_slot(uint16_t index, uint16_t slots)
 {
     index++;
-    return index == TRANSMIT_SLOTS ? 0 : index;
+    return index == slots ? 0 : index;
 }
 
 void hal_link_rings_init(hal_link_rings *rings)
@@ -24,7 +24,7 @@ void hal_link_rings_init(hal_link_rings *rings)
 
 void hal_link_rings_received(hal_link_rings *rings, uint8_t byte)
 {
-    uint16_t next = (uint16_t)((rings->receive_head + 1u) & RECEIVE_MASK);
+    uint16_t next = next_slot(rings->receive_head, RECEIVE_SLOTS);
 
     if (next == rings->receive_tail) {
         rings->receive_overruns++;
@@ -41,7 +41,7 @@ uint16_t hal_link_rings_take(hal_link_rings *rings, uint8_t *bytes, uint16_t cap
 
     while (count < capacity && tail != rings->receive_head) {
         bytes[count++] = rings->receive[tail];
-        tail = (uint16_t)((tail + 1u) & RECEIVE_MASK);
+        tail = next_slot(tail, RECEIVE_SLOTS);
     }
     rings->receive_tail = tail;
     return count;
@@ -67,7 +67,7 @@ uint16_t hal_link_rings_queue(hal_link_rings *rings, const uint8_t *bytes, uint1
         count = room;
     for (i = 0; i < count; i++) {
         rings->transmit[head] = bytes[i];
-        head = next_transmit_slot(head);
+        head = next_slot(head, TRANSMIT_SLOTS);
     }
     rings->transmit_head = head;
     return count;
@@ -80,7 +80,7 @@ bool hal_link_rings_next_to_send(hal_link_rings *rings, uint8_t *byte)
     if (tail == rings->transmit_head)
         return false;
     *byte = rings->transmit[tail];
-    rings->transmit_tail = next_transmit_slot(tail);
+    rings->transmit_tail = next_slot(tail, TRANSMIT_SLOTS);
     return true;
 }
 

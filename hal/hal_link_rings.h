@@ -3,8 +3,8 @@
 // send go in from hal_link_send and out to the transmitter, from its
 // interrupt or a polling loop. Each side moves only its own index, so
 // neither needs a critical section where a 16-bit store is atomic. The
-// capacities are the target's (HAL_LINK_RECEIVE_CAPACITY, a power of two,
-// and HAL_LINK_TRANSMIT_CAPACITY).
+// capacities are the target's (HAL_LINK_RECEIVE_CAPACITY and
+// HAL_LINK_TRANSMIT_CAPACITY, any sizes).
 
 #ifndef HAL_LINK_RINGS_H
 #define HAL_LINK_RINGS_H
@@ -15,11 +15,11 @@
 #include "hal.h"
 
 typedef struct hal_link_rings {
-    uint8_t receive[HAL_LINK_RECEIVE_CAPACITY];
+    // Each ring keeps one slot free, so that head == tail means empty.
+    uint8_t receive[HAL_LINK_RECEIVE_CAPACITY + 1u];
     volatile uint16_t receive_head;     // next byte to write (interrupt side)
     volatile uint16_t receive_tail;     // next byte to read (main-loop side)
     volatile uint16_t receive_overruns; // bytes lost to a full ring or the UART
-    // One slot stays free, so that head == tail means empty.
     uint8_t transmit[HAL_LINK_TRANSMIT_CAPACITY + 1u];
     volatile uint16_t transmit_head; // next byte to write (main-loop side)
     volatile uint16_t transmit_tail; // next byte to send (transmitter side)

@@ -117,6 +117,11 @@ bool node_receive_byte(node_state *node, uint8_t byte, uint32_t now_ms)
     return true;
 }
 
+bool node_receive_ready(const node_state *node)
+{
+    return !node->frame_ready;
+}
+
 uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, uint32_t now_ms)
 {
     uint16_t taken = 0;

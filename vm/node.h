@@ -135,6 +135,11 @@ uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, ui
 // Feeds one byte; returns false (and takes nothing) while a frame waits.
 bool node_receive_byte(node_state *node, uint8_t byte, uint32_t now_ms);
 
+// Whether node_receive_byte would take a byte now: false while a complete
+// frame waits for node_poll. A caller that takes bytes from a buffer of its
+// own (a UART's ring) asks first, and leaves them there until then.
+bool node_receive_ready(const node_state *node);
+
 // One step of the main loop, never blocking (bytecode.md §6.5): discards a
 // stalled partial frame, runs the VM for at most NODE_STEP_BUDGET
 // instructions, handles the waiting frame if any, then starts the lowest

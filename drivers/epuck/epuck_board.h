@@ -179,10 +179,16 @@ typedef enum epuck_camera_step {
     EPUCK_CAMERA_FAILED   // the camera sent no frame or stopped mid-row
 } epuck_camera_step;
 
-// Starts reading the first `count` bytes of row `row` (0 = the first row of
-// the configured window) of a coming frame into `bytes`, which must stay
-// valid until the read is done; replaces a read in progress.
-void epuck_board_camera_start(hal_board *board, uint16_t row, uint8_t *bytes, uint16_t count);
+// Bytes the camera sends per pixel (RGB565).
+#define EPUCK_CAMERA_PIXEL_BYTES 2u
+
+// Starts reading row `row` (0 = the first row of the configured window) of
+// a coming frame: of every second pixel from the first (pixels 0, 2, 4...),
+// `pixels` of them, the EPUCK_CAMERA_PIXEL_BYTES bytes go one after the
+// other into `bytes`, which must stay valid until the read is done (a row
+// cut short leaves there the bytes read so far). Replaces a read in
+// progress.
+void epuck_board_camera_start(hal_board *board, uint16_t row, uint8_t *bytes, uint16_t pixels);
 
 // Advances the read, waiting at most a few hundred microseconds; says where
 // it stands.

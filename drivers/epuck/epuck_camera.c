@@ -23,6 +23,8 @@
 #define RED_BLUE_SCALE    3
 #define GREEN_SCALE_TIMES 3
 #define GREEN_SCALE_OVER  2
+// A pixel's bytes are read into one word of the line (epuck_camera_capture).
+typedef char pixel_fits_a_word[EPUCK_CAMERA_PIXEL_BYTES == sizeof(int16_t) ? 1 : -1];
 
 // The sensor's usable array starts at these coordinates (§3.5), and our
 // window skips EPUCK_WINDOW_LEFT columns of it (the GCtronic line, §6.1).
@@ -201,7 +203,9 @@ bool epuck_camera_capture(epuck_camera *camera,
         if (line_percent > PERCENT - 1)
             line_percent = PERCENT - 1;
         row = (uint16_t)((uint16_t)line_percent * EPUCK_CAMERA_WINDOW_ROWS / PERCENT);
-        epuck_board_camera_start(camera->board, row, camera->row, EPUCK_CAMERA_ROW_BYTES);
+        // The row's bytes go into `blue`, EPUCK_CAMERA_PIXEL_BYTES per word, so
+        // that pixel i lies in blue[i] until the line replaces it below.
+        epuck_board_camera_start(camera->board, row, (uint8_t *)blue, EPUCK_CAMERA_LINE_PIXELS);
         camera->reading = true;
     }
     step = epuck_board_camera_step(camera->board);
@@ -214,9 +218,10 @@ bool epuck_camera_capture(epuck_camera *camera,
     if (step == EPUCK_CAMERA_FAILED)
         return false;
     for (i = 0; i < EPUCK_CAMERA_LINE_PIXELS; i++) {
-        // Every second pixel; the sensor sends R5G3 then G3B5 (§3.5).
-        uint8_t first = camera->row[4u * i];
-        uint8_t second = camera->row[4u * i + 1u];
+        // The sensor sends R5G3 then G3B5 (§3.5).
+        const uint8_t *pixel = (const uint8_t *)&blue[i];
+        uint8_t first = pixel[0];
+        uint8_t second = pixel[1];
         uint16_t r = (uint16_t)(first >> 3);
         uint16_t g = (uint16_t)(((first & 0x7u) << 3) | (second >> 5));
         uint16_t b = (uint16_t)(second & 0x1Fu);

@@ -16,9 +16,9 @@
 #define EPUCK_CAMERA_LINE_PIXELS 60u
 // Rows of the window the line can be taken from.
 #define EPUCK_CAMERA_WINDOW_ROWS 120u
-// Pixels the sensor sends per row of the window, 2 bytes each.
+// Pixels the sensor sends per row of the window; the line keeps every
+// second one (epuck_board_camera_start).
 #define EPUCK_CAMERA_ROW_PIXELS 120u
-#define EPUCK_CAMERA_ROW_BYTES  (2u * EPUCK_CAMERA_ROW_PIXELS)
 
 typedef enum epuck_camera_model {
     EPUCK_CAMERA_NONE, // no camera answered
@@ -32,7 +32,6 @@ typedef struct epuck_camera {
     uint32_t last_capture_ms;
     bool captured; // at least one line read (or failed)
     bool reading;  // a row read is under way on the board
-    uint8_t row[EPUCK_CAMERA_ROW_BYTES];
 } epuck_camera;
 
 // Resets the camera, identifies it by its registers 0x00/0x01 and writes its
@@ -48,8 +47,10 @@ epuck_camera_model epuck_camera_model_of(const epuck_camera *camera);
 // since the last line, starts reading the line at `line_percent` (0..99,
 // clamped) of the image height; when a read finishes, writes the line into
 // `red`, `green`, `blue` (EPUCK_CAMERA_LINE_PIXELS each) and returns true.
-// Otherwise returns false, writing nothing (a failed read waits for the
-// interval too).
+// Otherwise returns false, writing nothing, except when the camera stops
+// in the middle of a row: `blue`, where the row's bytes are read (the
+// driver keeps no row of its own), then holds those read so far. A failed
+// read waits for the interval too. Pass the same arrays until a read ends.
 bool epuck_camera_capture(epuck_camera *camera,
                           int16_t line_percent,
                           int16_t *red,

@@ -51,7 +51,7 @@ struct hal_board {
     dspic30_camera_phase camera_phase;
     uint16_t camera_row;
     uint8_t *camera_bytes;
-    uint16_t camera_count;
+    uint16_t camera_pixels;
     uint32_t camera_started_ms;
 };
 

@@ -12,6 +12,8 @@
 #include "dspic30_registers.h"
 
 #define CAMERA_DATA_SHIFT 8u // Y0..Y7 on RD8..RD15
+// A pixel kept and the one skipped after it.
+#define PIXEL_PAIR_BYTES (2u * EPUCK_CAMERA_PIXEL_BYTES)
 
 // Waits until `pin` reads `level`; false on a timeout.
 static bool wait_for(hal_board *board, epuck_pin pin, bool level)
@@ -29,6 +31,13 @@ static bool read_row(hal_board *board)
 {
     const bool active = DSPIC30_CAMERA_SYNC_ACTIVE_LEVEL;
     const bool latch = DSPIC30_CAMERA_PCLK_LATCH_LEVEL;
+    // Bytes up to the end of the last pixel kept: the pixel skipped after it
+    // is not waited for.
+    const uint16_t clocked = board->camera_pixels == 0
+                               ? 0
+                               : (uint16_t)(board->camera_pixels * PIXEL_PAIR_BYTES -
+                                            (PIXEL_PAIR_BYTES - EPUCK_CAMERA_PIXEL_BYTES));
+    uint8_t *kept = board->camera_bytes;
     hal_critical_state state;
     uint16_t i;
     bool ok = true;
@@ -40,22 +49,27 @@ static bool read_row(hal_board *board)
     }
     if (!wait_for(board, EPUCK_PIN_CAMERA_HREF, active))
         return false;
-    // No interrupt may make us miss a pixel clock.
+    // No interrupt may make us miss a pixel clock. Every byte of the row up
+    // to the last pixel kept is clocked in; those of the pixels between are
+    // not kept.
     state = hal_critical_enter(board);
-    for (i = 0; i < board->camera_count && ok; i++) {
+    for (i = 0; i < clocked && ok; i++) {
+        uint8_t byte;
         ok = wait_for(board, EPUCK_PIN_CAMERA_PCLK, !latch) &&
              wait_for(board, EPUCK_PIN_CAMERA_PCLK, latch);
-        board->camera_bytes[i] = (uint8_t)(dspic30_read(DSPIC30_PORTD) >> CAMERA_DATA_SHIFT);
+        byte = (uint8_t)(dspic30_read(DSPIC30_PORTD) >> CAMERA_DATA_SHIFT);
+        if (i % PIXEL_PAIR_BYTES < EPUCK_CAMERA_PIXEL_BYTES)
+            *kept++ = byte;
     }
     hal_critical_leave(board, state);
     return ok;
 }
 
-void epuck_board_camera_start(hal_board *board, uint16_t row, uint8_t *bytes, uint16_t count)
+void epuck_board_camera_start(hal_board *board, uint16_t row, uint8_t *bytes, uint16_t pixels)
 {
     board->camera_row = row;
     board->camera_bytes = bytes;
-    board->camera_count = count;
+    board->camera_pixels = pixels;
     board->camera_started_ms = hal_milliseconds(board);
     board->camera_phase = DSPIC30_CAMERA_WAITING_FOR_FRAME;
 }

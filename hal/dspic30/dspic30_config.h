@@ -49,12 +49,17 @@
 #define DSPIC30_UART_CLOCKS_PER_BIT 16ul // UxBRG = FCY / (16 × baud) − 1
 #define DSPIC30_UART_BRG(baud)                                                                     \
     ((uint16_t)(DSPIC30_FCY_HZ / (DSPIC30_UART_CLOCKS_PER_BIT * (baud)) - 1ul))
-// The link's rings (hal.h). Reception: a power of two over one 522-byte
-// frame, as the GCtronic Aseba port uses. Transmission: one whole frame,
-// rounded up to the node's 32-byte pieces, so that a reply never waits; the
-// transmit interrupt drains it (1,024 more bytes would not fit the 8 KB).
-#define HAL_LINK_RECEIVE_CAPACITY  1024u
-#define HAL_LINK_TRANSMIT_CAPACITY 544u
+// The link's rings (hal.h). Transmission: one of the node's 32-byte pieces
+// (NODE_TRANSMIT_CHUNK): the main loop waits while a longer frame drains
+// (45 ms for the largest at 115200 baud), in order; a whole frame would
+// cost 512 bytes of the 8 KB for no byte more on the wire. Reception: one
+// largest frame (6-byte header and 516 bytes of payload, protocol.md §2),
+// what arrives at 115200 baud while the main loop sends one: the main loop
+// moves bytes on into the node's frame meanwhile, so the ring fills only
+// while the node holds a whole frame (the GCtronic port's 1,024 bytes held
+// two).
+#define HAL_LINK_RECEIVE_CAPACITY  522u
+#define HAL_LINK_TRANSMIT_CAPACITY 32u
 
 // --- interrupt priorities (§1.7; 7 is highest, 0 disables) ------------------------
 // The ADC scan comes 16384 times a second and must not be late; the UART's

@@ -63,7 +63,7 @@ struct hal_board {
     // at its first step.
     uint8_t *camera_bytes;
     uint16_t camera_row;
-    uint16_t camera_count;
+    uint16_t camera_pixels;
 
     uint16_t critical_depth;
     bool reset_requested;

@@ -14,10 +14,12 @@
 // §1.6).
 #define HOST_CYCLES_PER_SECOND 14745600ul
 
-// The link: the robot's rings (hal/dspic30/dspic30_config.h). The host board
-// hands what is sent to its output at once, so its transmit ring never fills.
+// The link. The host board takes what the simulated network delivers a
+// whole frame at a time and refuses what does not fit, so its receive ring
+// loses nothing whatever its size (two frames); it hands what is sent to
+// its output at once, so its transmit ring (the robot's size) never fills.
 #define HAL_LINK_RECEIVE_CAPACITY  1024u
-#define HAL_LINK_TRANSMIT_CAPACITY 544u
+#define HAL_LINK_TRANSMIT_CAPACITY 32u
 
 // The simulated data EEPROM, kept in the memory file beside the flash.
 #define HOST_EEPROM_WORDS 2048u

@@ -151,11 +151,11 @@ bool epuck_board_i2c_read(hal_board *board,
     return board->world->i2c_read(board->world->context, device, reg, bytes, count);
 }
 
-void epuck_board_camera_start(hal_board *board, uint16_t row, uint8_t *bytes, uint16_t count)
+void epuck_board_camera_start(hal_board *board, uint16_t row, uint8_t *bytes, uint16_t pixels)
 {
     board->camera_bytes = bytes;
     board->camera_row = row;
-    board->camera_count = count;
+    board->camera_pixels = pixels;
 }
 
 epuck_camera_step epuck_board_camera_step(hal_board *board)
@@ -165,9 +165,14 @@ epuck_camera_step epuck_board_camera_step(hal_board *board)
     // The world's camera answers at once: the row is read at the first step.
     if (board->camera_bytes == 0)
         return EPUCK_CAMERA_FAILED;
-    for (i = 0; i < board->camera_count; i++)
-        board->camera_bytes[i] =
-          board->world->camera_byte(board->world->context, board->camera_row, i, board->cycles);
+    // Every second pixel: its bytes are the row's 2 × EPUCK_CAMERA_PIXEL_BYTES × p onwards.
+    for (i = 0; i < board->camera_pixels * EPUCK_CAMERA_PIXEL_BYTES; i++) {
+        uint16_t pixel = (uint16_t)(i / EPUCK_CAMERA_PIXEL_BYTES);
+        uint16_t in_row =
+          (uint16_t)(2u * pixel * EPUCK_CAMERA_PIXEL_BYTES + i % EPUCK_CAMERA_PIXEL_BYTES);
+        board->camera_bytes[i] = board->world->camera_byte(
+          board->world->context, board->camera_row, in_row, board->cycles);
+    }
     board->camera_bytes = 0;
     return EPUCK_CAMERA_DONE;
 }

@@ -24,7 +24,7 @@
 
 // --- the link: USART1, QEMU's first serial port ----------------------------------------
 #define STM32F4_LINK_BAUD          115200ul
-#define HAL_LINK_RECEIVE_CAPACITY  1024u // a power of two over one 522-byte frame
+#define HAL_LINK_RECEIVE_CAPACITY  1024u // about two 522-byte frames: RAM is plenty
 #define HAL_LINK_TRANSMIT_CAPACITY 4096u // the whole description at once: RAM is plenty
 // 0: send by polling TXE (QEMU sends each byte at once and never raises the
 // transmit interrupt); 1: from the transmit-empty interrupt (a real chip).

@@ -168,7 +168,7 @@ TEST_F(HostBoard, FlatWorldInputsAreNeutral)
     EXPECT_TRUE(epuck_board_pin_read(board.get(), EPUCK_PIN_REMOTE));      // receiver idles high
     uint8_t bytes[2] = { 1, 1 };
     EXPECT_FALSE(epuck_board_i2c_read(board.get(), EPUCK_I2C_CAMERA_ADDRESS, 0, bytes, 2));
-    epuck_board_camera_start(board.get(), 0, bytes, 2);
+    epuck_board_camera_start(board.get(), 0, bytes, 1); // one pixel, 2 bytes
     EXPECT_EQ(epuck_board_camera_step(board.get()), EPUCK_CAMERA_DONE);
     EXPECT_EQ(bytes[0], 0);
     // A step with no read started fails.

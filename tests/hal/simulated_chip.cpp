@@ -266,6 +266,8 @@ uint16_t Chip::table_read(uint16_t offset, bool high)
 void Chip::special(const std::string &instruction)
 {
     specials.push_back(instruction);
+    if (instruction == "pwrsav #1" && on_idle)
+        on_idle();
 }
 
 } // namespace simulated

@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -51,6 +52,8 @@ class Chip
 
     std::vector<Write> writes;
     std::vector<std::string> specials;
+    // Runs when the CPU idles (pwrsav #1), where a test lets time pass.
+    std::function<void()> on_idle;
     std::vector<Operation> operations;
     int rejected_unlocks = 0; // WR set without the key sequence just before
 
