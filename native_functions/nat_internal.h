@@ -1,5 +1,5 @@
-// What the files of the standard natives share: the C functions behind the
-// descriptions of nat_standard.c and the helpers that fetch arguments.
+// What the files of the standard natives share: the helpers that fetch
+// arguments and the macros that write the descriptions of nat_standard.c.
 // Not for use outside native_functions/.
 
 #ifndef NAT_INTERNAL_H
@@ -8,6 +8,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "nat_standard.h"
 #include "vm.h"
 
 // The low 16 bits of `value` as a signed word: Aseba's wrapping arithmetic.
@@ -64,49 +65,20 @@ void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_o
 #define SIZE_5        "\x15"
 #define P(size, name) SIZE_##size name
 
-// One native's record: its function is `nat_<identifier>_function`, its
-// description name, documentation and parameters (P(...) P(...)), its
-// stack words those of bytecode.md §9: parameters + size-0 parameters +
-// distinct templates (the tests check them for every entry).
+// Stack-words bytes that start a packed description (vm.h, vm_native).
+#define STACK_2 "\x02"
+#define STACK_3 "\x03"
+#define STACK_4 "\x04"
+#define STACK_5 "\x05"
+#define STACK_6 "\x06"
+#define STACK_7 "\x07"
+
+// One native's packed description, nat_<identifier>_description: its stack
+// words, those of bytecode.md §9 (parameters + size-0 parameters + distinct
+// templates; the tests check them for every entry), its name, documentation
+// and parameters (P(...) P(...)). Its function is nat_<identifier>_function.
 #define NATIVE(identifier, stack_words, name, documentation, parameters)                           \
-    const vm_native nat_##identifier = { nat_##identifier##_function,                              \
-                                         stack_words,                                              \
-                                         name DOC documentation parameters }
-
-// nat_math.c
-void nat_math_copy_function(vm_state *vm, const int16_t *arguments);
-void nat_math_fill_function(vm_state *vm, const int16_t *arguments);
-void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments);
-void nat_math_add_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sub_function(vm_state *vm, const int16_t *arguments);
-void nat_math_mul_function(vm_state *vm, const int16_t *arguments);
-void nat_math_div_function(vm_state *vm, const int16_t *arguments);
-void nat_math_min_function(vm_state *vm, const int16_t *arguments);
-void nat_math_max_function(vm_state *vm, const int16_t *arguments);
-void nat_math_clamp_function(vm_state *vm, const int16_t *arguments);
-void nat_math_dot_function(vm_state *vm, const int16_t *arguments);
-void nat_math_stat_function(vm_state *vm, const int16_t *arguments);
-void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sort_function(vm_state *vm, const int16_t *arguments);
-void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments);
-void nat_math_rand_function(vm_state *vm, const int16_t *arguments);
-
-// nat_trigonometry.c
-void nat_math_atan2_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sin_function(vm_state *vm, const int16_t *arguments);
-void nat_math_cos_function(vm_state *vm, const int16_t *arguments);
-void nat_math_rot2_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sqrt_function(vm_state *vm, const int16_t *arguments);
-
-// nat_deque.c
-void nat_deque_size_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_get_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_set_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_insert_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_erase_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments);
+    const char nat_##identifier##_description[] =                                                  \
+      STACK_##stack_words name DOC documentation parameters
 
 #endif

@@ -153,6 +153,6 @@ NATIVE(deque_pop_back,
        W_FILL " " W_DEST W_FROM W_BACK W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
        P(N, W_DEQUE) P(M, W_DEST));
 
-static const vm_native *const standard_natives[NAT_STANDARD_COUNT] = { NAT_STANDARD_LIST };
+static const vm_native standard_natives[NAT_STANDARD_COUNT] = { NAT_STANDARD_LIST };
 
 const vm_native_table nat_standard_table = { standard_natives, NAT_STANDARD_COUNT, nat_words };

@@ -100,12 +100,12 @@ static void put_text(node_state *node, const char *text)
 
 static void send_native(node_state *node, const vm_native *native)
 {
-    native_parts parts = split_native(node->vm.natives.words, native->description);
+    native_parts parts = split_native(node->vm.natives.words, vm_native_name(native));
     const char *parameter = parts.parameters;
     uint16_t i;
 
     node_frame_begin(node, NODE_MSG_NATIVE_FUNCTION_DESCRIPTION, parts.payload_length);
-    put_text(node, native->description);
+    put_text(node, vm_native_name(native));
     put_text(node, parts.documentation);
     node_frame_put_u16(node, parts.parameter_count);
     for (i = 0; i < parts.parameter_count; i++) {
@@ -154,7 +154,7 @@ void node_send_description(node_state *node)
     }
 
     for (i = 0; i < native_count(node); i++)
-        send_native(node, node->vm.natives.natives[i]);
+        send_native(node, &node->vm.natives.natives[i]);
 }
 
 // --- fingerprint -------------------------------------------------------------
@@ -226,7 +226,7 @@ uint16_t node_description_fingerprint(const node_description *description,
     }
     for (i = 0; i < count; i++) {
         const char *words = description->natives->words;
-        const char *name = description->natives->natives[i]->description;
+        const char *name = vm_native_name(&description->natives->natives[i]);
         native_parts parts = split_native(words, name);
         const char *parameter = parts.parameters;
 

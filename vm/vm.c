@@ -515,11 +515,12 @@ branch_false:
 
     VM_CASE(NATIVE_CALL)
     {
-        const vm_native *native = vm->natives.natives[word & VM_OPERAND_MASK];
+        const vm_native *native = &vm->natives.natives[word & VM_OPERAND_MASK];
         int16_t arguments[VM_MAX_NATIVE_ARGUMENTS];
+        uint16_t count = vm_native_stack_words(native);
         uint16_t i;
 
-        for (i = 0; i < native->stack_words; i++)
+        for (i = 0; i < count; i++)
             arguments[i] = *--next;
         save_state(vm, ip, next);
         native->function(vm, arguments);

@@ -12,7 +12,7 @@ extern "C" {
 
 aseba::NativeFunction description_of(const vm_native &native)
 {
-    const vm_native *list[] = { &native };
+    const vm_native list[] = { native };
     return aseba::native_function(vm_native_table{ list, 1, nat_words }, 0);
 }
 
@@ -72,7 +72,7 @@ OurNode::OurNode(uint16_t variables_size)
 
 void OurNode::call(const vm_native &native, const std::vector<int16_t> &popped_words)
 {
-    if (popped_words.size() != native.stack_words)
+    if (popped_words.size() != vm_native_stack_words(&native))
         throw std::invalid_argument("wrong argument count for " + description_of(native).name);
     // vm_init copied the memory description; keep it pointing at our vector.
     vm.memory.variables = variables.data();

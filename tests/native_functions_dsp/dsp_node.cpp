@@ -12,7 +12,7 @@ extern "C" {
 
 aseba::NativeFunction description_of(const vm_native &native)
 {
-    const vm_native *list[] = { &native };
+    const vm_native list[] = { native };
     return aseba::native_function(vm_native_table{ list, 1, nat_words }, 0);
 }
 
@@ -49,7 +49,7 @@ const vm_callbacks recording_callbacks = {
 };
 
 // The e-puck's order: standard natives first, then the DSP natives.
-const vm_native *const epuck_like_natives[] = { NAT_STANDARD_LIST, NAT_DSP_LIST };
+const vm_native epuck_like_natives[] = { NAT_STANDARD_LIST, NAT_DSP_LIST };
 const vm_native_table epuck_like_table = { epuck_like_natives,
                                            NAT_STANDARD_COUNT + NAT_DSP_COUNT,
                                            nat_words };
@@ -77,7 +77,7 @@ DspNode::DspNode(uint16_t variables_size, uint16_t bytecode_words, uint16_t args
 
 void DspNode::call(const vm_native &native, const std::vector<int16_t> &popped_words)
 {
-    if (popped_words.size() != native.stack_words)
+    if (popped_words.size() != vm_native_stack_words(&native))
         throw std::invalid_argument("wrong argument count for " + description_of(native).name);
     vm.pc = call_pc;
     vm.flags = VM_FLAG_EVENT_ACTIVE | VM_FLAG_EVENT_RUNNING;

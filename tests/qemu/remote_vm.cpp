@@ -91,7 +91,7 @@ uint16_t call(vm_state *vm, uint8_t which, uint16_t argument)
 bool is_harness_table(const vm_native_table *natives)
 {
     return natives != nullptr && natives->count == 12 &&
-           std::strcmp(natives->natives[0]->description, "test.subtract") == 0;
+           std::strcmp(vm_native_name(&natives->natives[0]), "test.subtract") == 0;
 }
 
 } // namespace

@@ -149,16 +149,16 @@ void native_stat(vm_state *vm, const int16_t *arguments)
     *outputs[2] = static_cast<int16_t>(sum / size);
 }
 
-// Described by their names alone (a packed description, vm.h).
-const vm_native subtract_native = { native_subtract, 3, "test.subtract" };
-const vm_native fill_native = { native_fill, 3, "test.fill" };
-const vm_native fail_native = { native_fail, 0, "test.fail" };
-const vm_native reach_native = { native_reach, 2, "test.reach" };
-const vm_native yield_native = { native_yield, 0, "test.yield" };
-const vm_native stat_native = { native_stat, 5, "test.stat" };
-const vm_native *const natives_list[TEST_NATIVE_COUNT] = {
-    &subtract_native, &fill_native, &fail_native, &reach_native, &yield_native, &fail_native,
-    &fail_native,     &fail_native, &fail_native, &fail_native,  &fail_native,  &stat_native
+// Described by their stack words and names alone (a packed description, vm.h).
+const vm_native subtract_native = { native_subtract, "\x03test.subtract" };
+const vm_native fill_native = { native_fill, "\x03test.fill" };
+const vm_native fail_native = { native_fail, "\x00test.fail" };
+const vm_native reach_native = { native_reach, "\x02test.reach" };
+const vm_native yield_native = { native_yield, "\x00test.yield" };
+const vm_native stat_native = { native_stat, "\x05test.stat" };
+const vm_native natives_list[TEST_NATIVE_COUNT] = {
+    subtract_native, fill_native, fail_native, reach_native, yield_native, fail_native,
+    fail_native,     fail_native, fail_native, fail_native,  fail_native,  stat_native
 };
 const vm_native_table natives_table = { natives_list, TEST_NATIVE_COUNT, nullptr };
 

@@ -115,18 +115,18 @@ bool execute_program(const CompileResult &compiled,
 {
     // the target's natives, found by name among the host's implementations:
     // the standard ones and the e-puck's (the firmware's own table)
-    std::vector<const vm_native *> natives;
+    std::vector<vm_native> natives;
     for (const auto &function : target.native_functions) {
         const vm_native *found = nullptr;
         for (const vm_native_table *table : { &nat_standard_table, &epuck_native_table })
             for (uint16_t i = 0; i < table->count && found == nullptr; ++i)
                 if (function.name == native_function(*table, i).name)
-                    found = table->natives[i];
+                    found = &table->natives[i];
         if (found == nullptr) {
             error = "native function " + function.name + " has no implementation on the host";
             return false;
         }
-        natives.push_back(found);
+        natives.push_back(*found);
     }
     // Run, not described: no dictionary needed.
     vm_native_table table{ natives.data(), static_cast<uint16_t>(natives.size()), nullptr };
