@@ -33,7 +33,12 @@
     X(FRONT, 0x91, "front")                                                                        \
     X(BACK, 0x92, "back")                                                                          \
     X(SIZE, 0x93, "size")                                                                          \
-    X(ELEMENT, 0x94, " element")
+    X(ELEMENT, 0x94, " element")                                                                   \
+    X(INDEX, 0x95, "index")                                                                        \
+    X(THE, 0x96, " the ")                                                                          \
+    X(WRITE, 0x97, "write")                                                                        \
+    X(ADD, 0x98, "add")                                                                            \
+    X(BY, 0x99, " by ")
 
 #define W_ELEMENT_BY_ELEMENT "\x80"
 #define W_MATH               "\x81"
@@ -56,6 +61,11 @@
 #define W_BACK               "\x92"
 #define W_SIZE               "\x93"
 #define W_ELEMENT            "\x94"
+#define W_INDEX              "\x95"
+#define W_THE                "\x96"
+#define W_WRITE              "\x97"
+#define W_ADD                "\x98"
+#define W_BY                 "\x99"
 
 // The dictionary of a native table (vm_native_table.words) whose natives'
 // descriptions use these words.
