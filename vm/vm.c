@@ -82,13 +82,23 @@ uint16_t vm_setup_event(vm_state *vm, uint16_t event)
     if (address == 0)
         return 0;
     if (vm->flags & VM_FLAG_EVENT_ACTIVE)
-        vm->callbacks->event_killed(vm->context, vm->pc);
+        vm_report(vm, VM_REPORT_EVENT_EXECUTION_KILLED, 1, 0, 0);
     vm->pc = address;
     vm->sp = -1;
     vm->flags |= VM_FLAG_EVENT_ACTIVE;
     if (vm->flags & VM_FLAG_STEP_BY_STEP)
-        vm->callbacks->execution_state_changed(vm->context, vm->pc, vm->flags);
+        vm_report_state(vm);
     return address;
+}
+
+void vm_report(vm_state *vm, uint16_t type, uint16_t count, uint16_t second, uint16_t third)
+{
+    uint16_t words[3];
+
+    words[0] = vm->pc;
+    words[1] = second;
+    words[2] = third;
+    vm->callbacks->report(vm->context, type, words, count);
 }
 
 // --- errors: each stops the VM and sends one report --------------------------
@@ -96,13 +106,13 @@ uint16_t vm_setup_event(vm_state *vm, uint16_t event)
 void vm_error_array_access(vm_state *vm, uint16_t size, uint16_t index)
 {
     vm->flags = VM_FLAG_STEP_BY_STEP;
-    vm->callbacks->array_access_out_of_bounds(vm->context, vm->pc, size, index);
+    vm_report(vm, VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS, 3, size, index);
 }
 
 void vm_error_division_by_zero(vm_state *vm)
 {
     vm->flags = VM_FLAG_STEP_BY_STEP;
-    vm->callbacks->division_by_zero(vm->context, vm->pc);
+    vm_report(vm, VM_REPORT_DIVISION_BY_ZERO, 1, 0, 0);
 }
 
 void vm_error_node_specific(vm_state *vm, const char *message)
@@ -621,7 +631,7 @@ static enum run_outcome run_to_breakpoint(vm_state *vm, uint16_t budget)
         if (at_breakpoint(vm, vm->pc)) {
             // EVENT_RUNNING stays set, as upstream reports it (flags 7).
             vm->flags |= VM_FLAG_STEP_BY_STEP;
-            vm->callbacks->execution_state_changed(vm->context, vm->pc, vm->flags);
+            vm_report_state(vm);
             return RUN_BREAKPOINT;
         }
         outcome = execute(vm, 1, true);

@@ -31,19 +31,21 @@
 
 typedef struct vm_state vm_state;
 
+// The reports whose payloads are words (protocol.md §5), the pc first. The
+// codes are the protocol's message types, so that a node sends a report as
+// it comes: one callback instead of one per report, less code on both sides.
+#define VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS 0x9006 // pc, size, index; the VM is stopped
+#define VM_REPORT_DIVISION_BY_ZERO           0x9007 // pc; the VM is stopped
+#define VM_REPORT_EVENT_EXECUTION_KILLED     0x9008 // pc: a new event abandoned the running one
+#define VM_REPORT_EXECUTION_STATE_CHANGED    0x900A // pc, flags
+
 // What the VM tells the node. Each callback receives the `context` given at
 // vm_init. Payloads are those of protocol.md §5.
 typedef struct vm_callbacks {
     // EMIT: a user event with `count` words, to every other node and host.
     void (*emit)(void *context, uint16_t event, const int16_t *payload, uint16_t count);
-    // EXECUTION_STATE_CHANGED(pc, flags).
-    void (*execution_state_changed)(void *context, uint16_t pc, uint16_t flags);
-    // EVENT_EXECUTION_KILLED(pc): a new event abandoned the running handler.
-    void (*event_killed)(void *context, uint16_t pc);
-    // ARRAY_ACCESS_OUT_OF_BOUNDS(pc, size, index); the VM is stopped.
-    void (*array_access_out_of_bounds)(void *context, uint16_t pc, uint16_t size, uint16_t index);
-    // DIVISION_BY_ZERO(pc); the VM is stopped.
-    void (*division_by_zero)(void *context, uint16_t pc);
+    // A report of type VM_REPORT_..., with its `count` words.
+    void (*report)(void *context, uint16_t type, const uint16_t *words, uint16_t count);
     // NODE_SPECIFIC_ERROR(pc, message); the VM is stopped.
     void (*node_specific_error)(void *context, uint16_t pc, const char *message);
 } vm_callbacks;

@@ -62,8 +62,6 @@ void on_emit(void *context, uint16_t event, const int16_t *payload, uint16_t cou
     session.emitted.push_back(text + "]}");
 }
 
-void on_state(void *, uint16_t, uint16_t) {}
-
 void on_killed(void *context, uint16_t pc)
 {
     static_cast<Session *>(context)->add_error("event killed", pc, "");
@@ -87,9 +85,18 @@ void on_node_error(void *context, uint16_t pc, const char *message)
     static_cast<Session *>(context)->add_error(message, pc, "");
 }
 
-const vm_callbacks CALLBACKS = {
-    on_emit, on_state, on_killed, on_array_access, on_division_by_zero, on_node_error
-};
+// The VM's word reports (vm.h), state changes left out.
+void on_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
+{
+    if (type == VM_REPORT_EVENT_EXECUTION_KILLED && count == 1)
+        on_killed(context, words[0]);
+    else if (type == VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS && count == 3)
+        on_array_access(context, words[0], words[1], words[2]);
+    else if (type == VM_REPORT_DIVISION_BY_ZERO && count == 1)
+        on_division_by_zero(context, words[0]);
+}
+
+const vm_callbacks CALLBACKS = { on_emit, on_report, on_node_error };
 
 // Runs the active event for at most `budget` steps; false if it is still active.
 bool run_event(vm_state &vm, unsigned long budget)
