@@ -40,15 +40,17 @@ static inline uint16_t nat_size_after(const int16_t *arguments, uint16_t paramet
     return nat_length(arguments[parameter_count]);
 }
 
-typedef int16_t (*nat_unary_operation)(int16_t value);
-typedef int16_t (*nat_binary_operation)(int16_t left, int16_t right);
+// An element-wise operation. One of one operand ignores `right`: the
+// natives of one source share the loop of two (less code).
+typedef int16_t (*nat_operation)(int16_t left, int16_t right);
 
-// dest[i] = operation(src[i]) for the layout &dest, &src, N, in increasing i.
-void nat_elementwise_unary(vm_state *vm, const int16_t *arguments, nat_unary_operation operation);
-
-// dest[i] = operation(src1[i], src2[i]) for the layout &dest, &src1, &src2, N,
-// in increasing i.
-void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_operation operation);
+// dest[i] = operation(src1[i], src2[i]) for the layout &dest, &src1, &src2,
+// N, or operation(src[i], src[i]) for &dest, &src, N when `sources` is 1, in
+// increasing i.
+void nat_elementwise(vm_state *vm,
+                     const int16_t *arguments,
+                     uint16_t sources,
+                     nat_operation operation);
 
 // --- description records -----------------------------------------------------
 

@@ -189,17 +189,30 @@ int16_t nat_sqrt(int16_t x)
 
 void nat_math_atan2_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_binary(vm, arguments, nat_atan2);
+    nat_elementwise(vm, arguments, 2, nat_atan2);
+}
+
+// nat_sin and nat_cos as element-wise operations (nat_internal.h).
+static int16_t sine_of(int16_t angle, int16_t same)
+{
+    (void)same;
+    return nat_sin(angle);
+}
+
+static int16_t cosine_of(int16_t angle, int16_t same)
+{
+    (void)same;
+    return nat_cos(angle);
 }
 
 void nat_math_sin_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_unary(vm, arguments, nat_sin);
+    nat_elementwise(vm, arguments, 1, sine_of);
 }
 
 void nat_math_cos_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_unary(vm, arguments, nat_cos);
+    nat_elementwise(vm, arguments, 1, cosine_of);
 }
 
 void nat_math_rot2_function(vm_state *vm, const int16_t *arguments)
