@@ -32,35 +32,33 @@ NATIVE(math_addscalar,
 NATIVE(math_add,
        4,
        W_MATH W_ADD,
-       W_ADD "s " W_SRC "1" W_AND W_SRC "2, " W_WRITE W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       W_ADD "s " W_SRC1 W_AND W_SRC2 ", " W_WRITE W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_sub,
        4,
        W_MATH "sub",
-       "substracts " W_SRC "2" W_FROM W_SRC "1" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       "substracts " W_SRC2 W_FROM W_SRC1 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_mul,
        4,
        W_MATH "mul",
-       "multiplies " W_SRC "1" W_AND W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       "multiplies " W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_div,
        4,
        W_MATH "div",
-       "divides " W_SRC "1" W_BY W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       "divides " W_SRC1 W_BY W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_min,
        4,
        W_MATH "min",
-       W_WRITE "s" W_THE "minimum" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST
-               "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       W_WRITE "s" W_THE "minimum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_max,
        4,
        W_MATH "max",
-       W_WRITE "s" W_THE "maximum" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST
-               "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       W_WRITE "s" W_THE "maximum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_clamp,
        5,
        W_MATH "clamp",
@@ -69,9 +67,8 @@ NATIVE(math_clamp,
 NATIVE(math_dot,
        5,
        W_MATH "dot",
-       W_WRITE "s" W_THE "dot product" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST
-               ", after a " W_SHIFT,
-       P(1, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2") P(1, W_SHIFT));
+       W_WRITE "s" W_THE "dot product" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST ", after a " W_SHIFT,
+       P(1, W_DEST) P(N, W_SRC1) P(N, W_SRC2) P(1, W_SHIFT));
 NATIVE(math_stat,
        5,
        W_MATH "stat",

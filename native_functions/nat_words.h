@@ -38,7 +38,9 @@
     X(THE, 0x96, " the ")                                                                          \
     X(WRITE, 0x97, "write")                                                                        \
     X(ADD, 0x98, "add")                                                                            \
-    X(BY, 0x99, " by ")
+    X(BY, 0x99, " by ")                                                                            \
+    X(SRC1, 0x9A, "src1")                                                                          \
+    X(SRC2, 0x9B, "src2")
 
 #define W_ELEMENT_BY_ELEMENT "\x80"
 #define W_MATH               "\x81"
@@ -66,6 +68,8 @@
 #define W_WRITE              "\x97"
 #define W_ADD                "\x98"
 #define W_BY                 "\x99"
+#define W_SRC1               "\x9A"
+#define W_SRC2               "\x9B"
 
 // The dictionary of a native table (vm_native_table.words) whose natives'
 // descriptions use these words.
