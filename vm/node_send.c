@@ -64,15 +64,13 @@ void node_frame_end(node_state *node)
     flush(node, true);
 }
 
-uint8_t node_string_length(const char *text, uint16_t limit)
+uint8_t node_string_length(const char *text)
 {
     uint16_t length = 0;
 
     if (text == NULL)
         return 0;
-    if (limit > NODE_MAX_STRING)
-        limit = NODE_MAX_STRING;
-    while (length < limit && text[length] != '\0')
+    while (length < NODE_MAX_STRING && text[length] != '\0')
         length++;
     // Cut before a character, not inside one, when the text goes on.
     if (text[length] != '\0') {
@@ -97,7 +95,7 @@ void node_send_words(node_state *node, uint16_t type, const uint16_t *words, uin
 
 void node_send_word_and_string(node_state *node, uint16_t type, uint16_t word, const char *text)
 {
-    uint8_t length = node_string_length(text, NODE_MAX_STRING);
+    uint8_t length = node_string_length(text);
 
     node_frame_begin(node, type, (uint16_t)(2 + 1 + length));
     node_frame_put_u16(node, word);
