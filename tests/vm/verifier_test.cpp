@@ -164,8 +164,9 @@ TEST(Verifier, RefusesUnknownInstructionsOperatorsAndNatives)
 
 TEST(Verifier, RefusesANativeThatTakesMoreWordsThanTheVmPasses)
 {
-    static const char description[] = { VM_MAX_NATIVE_ARGUMENTS + 1, 'g', 'r', 'e', 'e', 'd',
-                                        'y',  '\x1F', '\x11', 'x', '\0' };
+    static const char description[] = {
+        VM_MAX_NATIVE_ARGUMENTS + 1, 'g', 'r', 'e', 'e', 'd', 'y', '\x1F', '\x11', 'x', '\0'
+    };
     static const vm_native natives[] = { { [](vm_state *, const int16_t *) {}, description } };
     static const vm_native_table table = { natives, 1, nullptr };
     VmHarness harness(VmSizes(), 1, table);

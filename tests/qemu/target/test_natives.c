@@ -79,18 +79,12 @@ static void native_stat(vm_state *vm, const int16_t *arguments)
    vm.h). */
 static const char fail_description[] = "\x00test.fail";
 static const vm_native harness_native_list[] = {
-    { native_subtract, "\x03test.subtract" },
-    { native_fill, "\x03test.fill" },
-    { native_fail, fail_description },
-    { native_reach, "\x02test.reach" },
-    { native_yield, "\x00test.yield" },
-    { native_fail, fail_description },
-    { native_fail, fail_description },
-    { native_fail, fail_description },
-    { native_fail, fail_description },
-    { native_fail, fail_description },
-    { native_fail, fail_description },
-    { native_stat, "\x05test.stat" },
+    { native_subtract, "\x03test.subtract" }, { native_fill, "\x03test.fill" },
+    { native_fail, fail_description },        { native_reach, "\x02test.reach" },
+    { native_yield, "\x00test.yield" },       { native_fail, fail_description },
+    { native_fail, fail_description },        { native_fail, fail_description },
+    { native_fail, fail_description },        { native_fail, fail_description },
+    { native_fail, fail_description },        { native_stat, "\x05test.stat" },
 };
 const vm_native_table harness_natives = { harness_native_list, 12, 0 };
 
