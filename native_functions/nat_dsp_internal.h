@@ -1,4 +1,4 @@
-// What the files of the DSP natives share: the fixed-point helpers they all
+// What the files of the DSP natives share: the fixed-point functions they all
 // round and saturate with. Not for use outside native_functions/.
 
 #ifndef NAT_DSP_INTERNAL_H

@@ -1,4 +1,4 @@
-// What the files of the standard natives share: the helpers that fetch
+// What the files of the standard natives share: the functions that fetch
 // arguments and the macros that write the descriptions of nat_standard.c.
 // Not for use outside native_functions/.
 
