@@ -28,25 +28,12 @@ static void ignore_emit(void *context, uint16_t event, const int16_t *payload, u
     (void)count;
 }
 
-static void ignore_state(void *context, uint16_t pc, uint16_t flags)
+static void ignore_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
 {
     (void)context;
-    (void)pc;
-    (void)flags;
-}
-
-static void ignore_pc(void *context, uint16_t pc)
-{
-    (void)context;
-    (void)pc;
-}
-
-static void ignore_array(void *context, uint16_t pc, uint16_t size, uint16_t index)
-{
-    (void)context;
-    (void)pc;
-    (void)size;
-    (void)index;
+    (void)type;
+    (void)words;
+    (void)count;
 }
 
 static void ignore_error(void *context, uint16_t pc, const char *message)
@@ -56,8 +43,7 @@ static void ignore_error(void *context, uint16_t pc, const char *message)
     (void)message;
 }
 
-static const vm_callbacks callbacks = { ignore_emit,  ignore_state, ignore_pc,
-                                        ignore_array, ignore_pc,    ignore_error };
+static const vm_callbacks callbacks = { ignore_emit, ignore_report, ignore_error };
 static const vm_native_table no_natives = { NULL, 0, NULL };
 
 int main(void)

@@ -21,22 +21,16 @@ bool nat_spans(vm_state *vm,
     return true;
 }
 
-void nat_elementwise_unary(vm_state *vm, const int16_t *arguments, nat_unary_operation operation)
-{
-    int16_t *spans[2];
-    uint16_t length = nat_size_after(arguments, 2);
-    if (!nat_spans(vm, arguments, 2, length, spans))
-        return;
-    for (uint16_t i = 0; i < length; ++i)
-        spans[0][i] = operation(spans[1][i]);
-}
-
-void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_operation operation)
+void nat_elementwise(vm_state *vm,
+                     const int16_t *arguments,
+                     uint16_t sources,
+                     nat_operation operation)
 {
     int16_t *spans[3];
-    uint16_t length = nat_size_after(arguments, 3);
-    if (!nat_spans(vm, arguments, 3, length, spans))
+    uint16_t length = nat_size_after(arguments, sources + 1);
+    if (!nat_spans(vm, arguments, sources + 1, length, spans))
         return;
+    const int16_t *right = spans[sources];
     for (uint16_t i = 0; i < length; ++i)
-        spans[0][i] = operation(spans[1][i], spans[2][i]);
+        spans[0][i] = operation(spans[1][i], right[i]);
 }

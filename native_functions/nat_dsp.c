@@ -22,8 +22,7 @@ NATIVE(dsp_fft,
        3,
        "dsp.fft",
        "in-place FFT" W_OF "real,imag (" W_SIZE " 8..128, power" W_OF
-       "2); each stage halves, so the "
-       "result is X/N; rounded half up, saturated",
+       "2); each stage halves, so" W_THE "result is X/N; rounded half up, saturated",
        P(N, "real") P(N, "imag"));
 NATIVE(dsp_mag,
        4,
@@ -57,5 +56,5 @@ NATIVE(dsp_conv,
 NATIVE(dsp_peak,
        4,
        "dsp.peak",
-       "index" W_AND W_VALUE W_OF "the first maximum" W_OF W_SRC,
-       P(1, "index") P(1, W_VALUE) P(N, W_SRC));
+       W_INDEX W_AND W_VALUE W_OF "the first maximum" W_OF W_SRC,
+       P(1, W_INDEX) P(1, W_VALUE) P(N, W_SRC));

@@ -11,20 +11,19 @@
 #ifndef NAT_DSP_H
 #define NAT_DSP_H
 
+#include "nat_standard.h"
 #include "vm.h"
 
-extern const vm_native nat_dsp_fft;
-extern const vm_native nat_dsp_mag;
-extern const vm_native nat_dsp_fir;
-extern const vm_native nat_dsp_iir;
-extern const vm_native nat_dsp_corr;
-extern const vm_native nat_dsp_conv;
-extern const vm_native nat_dsp_peak;
+// The DSP natives by name, in their order: native NAME is nat_NAME_function
+// and nat_NAME_description (nat_dsp.c), as for the standard natives.
+#define NAT_DSP_NAMES(X)                                                                           \
+    X(dsp_fft) X(dsp_mag) X(dsp_fir) X(dsp_iir) X(dsp_corr) X(dsp_conv) X(dsp_peak)
+NAT_DSP_NAMES(NAT_DECLARE)
 
-// The DSP natives, as initialisers of an array of `const vm_native *`.
+// The DSP natives, as initialisers of an array of vm_native.
 #define NAT_DSP_LIST                                                                               \
-    &nat_dsp_fft, &nat_dsp_mag, &nat_dsp_fir, &nat_dsp_iir, &nat_dsp_corr, &nat_dsp_conv,          \
-      &nat_dsp_peak
+    NAT_RECORD(dsp_fft), NAT_RECORD(dsp_mag), NAT_RECORD(dsp_fir), NAT_RECORD(dsp_iir),            \
+      NAT_RECORD(dsp_corr), NAT_RECORD(dsp_conv), NAT_RECORD(dsp_peak)
 
 // Number of entries of NAT_DSP_LIST.
 #define NAT_DSP_COUNT 7

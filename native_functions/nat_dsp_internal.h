@@ -1,12 +1,12 @@
-// What the files of the DSP natives share: the C functions behind the
-// descriptions of nat_dsp.c and the fixed-point helpers they all round and
-// saturate with. Not for use outside native_functions/.
+// What the files of the DSP natives share: the fixed-point functions they all
+// round and saturate with. Not for use outside native_functions/.
 
 #ifndef NAT_DSP_INTERNAL_H
 #define NAT_DSP_INTERNAL_H
 
 #include <stdint.h>
 
+#include "nat_dsp.h"
 #include "vm.h"
 
 // Largest right shift dsp.corr and dsp.conv accept.
@@ -62,18 +62,5 @@ int16_t nat_dsp_scaled_dot_product(const int16_t *a,
                                    int16_t b_step,
                                    uint16_t count,
                                    uint16_t shift);
-
-// nat_dsp_fft.c
-void nat_dsp_fft_function(vm_state *vm, const int16_t *arguments);
-void nat_dsp_mag_function(vm_state *vm, const int16_t *arguments);
-
-// nat_dsp_filter.c
-void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments);
-void nat_dsp_iir_function(vm_state *vm, const int16_t *arguments);
-
-// nat_dsp_correlation.c
-void nat_dsp_corr_function(vm_state *vm, const int16_t *arguments);
-void nat_dsp_conv_function(vm_state *vm, const int16_t *arguments);
-void nat_dsp_peak_function(vm_state *vm, const int16_t *arguments);
 
 #endif

@@ -1,5 +1,5 @@
-// What the files of the standard natives share: the C functions behind the
-// descriptions of nat_standard.c and the helpers that fetch arguments.
+// What the files of the standard natives share: the functions that fetch
+// arguments and the macros that write the descriptions of nat_standard.c.
 // Not for use outside native_functions/.
 
 #ifndef NAT_INTERNAL_H
@@ -8,6 +8,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "nat_standard.h"
 #include "vm.h"
 
 // The low 16 bits of `value` as a signed word: Aseba's wrapping arithmetic.
@@ -39,15 +40,17 @@ static inline uint16_t nat_size_after(const int16_t *arguments, uint16_t paramet
     return nat_length(arguments[parameter_count]);
 }
 
-typedef int16_t (*nat_unary_operation)(int16_t value);
-typedef int16_t (*nat_binary_operation)(int16_t left, int16_t right);
+// An element-wise operation. One of one operand ignores `right`: the
+// natives of one source share the loop of two (less code).
+typedef int16_t (*nat_operation)(int16_t left, int16_t right);
 
-// dest[i] = operation(src[i]) for the layout &dest, &src, N, in increasing i.
-void nat_elementwise_unary(vm_state *vm, const int16_t *arguments, nat_unary_operation operation);
-
-// dest[i] = operation(src1[i], src2[i]) for the layout &dest, &src1, &src2, N,
-// in increasing i.
-void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_operation operation);
+// dest[i] = operation(src1[i], src2[i]) for the layout &dest, &src1, &src2,
+// N, or operation(src[i], src[i]) for &dest, &src, N when `sources` is 1, in
+// increasing i.
+void nat_elementwise(vm_state *vm,
+                     const int16_t *arguments,
+                     uint16_t sources,
+                     nat_operation operation);
 
 // --- description records -----------------------------------------------------
 
@@ -64,49 +67,20 @@ void nat_elementwise_binary(vm_state *vm, const int16_t *arguments, nat_binary_o
 #define SIZE_5        "\x15"
 #define P(size, name) SIZE_##size name
 
-// One native's record: its function is `nat_<identifier>_function`, its
-// description name, documentation and parameters (P(...) P(...)), its
-// stack words those of bytecode.md §9: parameters + size-0 parameters +
-// distinct templates (the tests check them for every entry).
+// Stack-words bytes that start a packed description (vm.h, vm_native).
+#define STACK_2 "\x02"
+#define STACK_3 "\x03"
+#define STACK_4 "\x04"
+#define STACK_5 "\x05"
+#define STACK_6 "\x06"
+#define STACK_7 "\x07"
+
+// One native's packed description, nat_<identifier>_description: its stack
+// words, those of bytecode.md §9 (parameters + size-0 parameters + distinct
+// templates; the tests check them for every entry), its name, documentation
+// and parameters (P(...) P(...)). Its function is nat_<identifier>_function.
 #define NATIVE(identifier, stack_words, name, documentation, parameters)                           \
-    const vm_native nat_##identifier = { nat_##identifier##_function,                              \
-                                         stack_words,                                              \
-                                         name DOC documentation parameters }
-
-// nat_math.c
-void nat_math_copy_function(vm_state *vm, const int16_t *arguments);
-void nat_math_fill_function(vm_state *vm, const int16_t *arguments);
-void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments);
-void nat_math_add_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sub_function(vm_state *vm, const int16_t *arguments);
-void nat_math_mul_function(vm_state *vm, const int16_t *arguments);
-void nat_math_div_function(vm_state *vm, const int16_t *arguments);
-void nat_math_min_function(vm_state *vm, const int16_t *arguments);
-void nat_math_max_function(vm_state *vm, const int16_t *arguments);
-void nat_math_clamp_function(vm_state *vm, const int16_t *arguments);
-void nat_math_dot_function(vm_state *vm, const int16_t *arguments);
-void nat_math_stat_function(vm_state *vm, const int16_t *arguments);
-void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sort_function(vm_state *vm, const int16_t *arguments);
-void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments);
-void nat_math_rand_function(vm_state *vm, const int16_t *arguments);
-
-// nat_trigonometry.c
-void nat_math_atan2_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sin_function(vm_state *vm, const int16_t *arguments);
-void nat_math_cos_function(vm_state *vm, const int16_t *arguments);
-void nat_math_rot2_function(vm_state *vm, const int16_t *arguments);
-void nat_math_sqrt_function(vm_state *vm, const int16_t *arguments);
-
-// nat_deque.c
-void nat_deque_size_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_get_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_set_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_insert_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_erase_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments);
-void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments);
+    const char nat_##identifier##_description[] =                                                  \
+      STACK_##stack_words name DOC documentation parameters
 
 #endif

@@ -43,14 +43,15 @@ static int16_t maximum(int16_t left, int16_t right)
 }
 
 // math.copy is the identity, element by element.
-static int16_t identity(int16_t value)
+static int16_t identity(int16_t value, int16_t same)
 {
+    (void)same;
     return value;
 }
 
 void nat_math_copy_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_unary(vm, arguments, identity);
+    nat_elementwise(vm, arguments, 1, identity);
 }
 
 void nat_math_fill_function(vm_state *vm, const int16_t *arguments)
@@ -84,17 +85,17 @@ void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments)
 
 void nat_math_add_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_binary(vm, arguments, add);
+    nat_elementwise(vm, arguments, 2, add);
 }
 
 void nat_math_sub_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_binary(vm, arguments, subtract);
+    nat_elementwise(vm, arguments, 2, subtract);
 }
 
 void nat_math_mul_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_binary(vm, arguments, multiply);
+    nat_elementwise(vm, arguments, 2, multiply);
 }
 
 // math.div and math.muldiv: dest[i] = a[i] * b[i] / c[i] in 32 bits, for
@@ -131,12 +132,12 @@ void nat_math_div_function(vm_state *vm, const int16_t *arguments)
 
 void nat_math_min_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_binary(vm, arguments, minimum);
+    nat_elementwise(vm, arguments, 2, minimum);
 }
 
 void nat_math_max_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_binary(vm, arguments, maximum);
+    nat_elementwise(vm, arguments, 2, maximum);
 }
 
 void nat_math_clamp_function(vm_state *vm, const int16_t *arguments)

@@ -26,39 +26,39 @@ NATIVE(math_fill,
        P(N, W_DEST) P(1, W_VALUE));
 NATIVE(math_addscalar,
        4,
-       W_MATH "add" W_SCALAR,
-       "add " W_SCALAR W_TO "each" W_ELEMENT W_OF W_SRC W_AND "store result" W_TO W_DEST,
+       W_MATH W_ADD W_SCALAR,
+       W_ADD " " W_SCALAR W_TO "each" W_ELEMENT W_OF W_SRC W_AND "store result" W_TO W_DEST,
        P(N, W_DEST) P(N, W_SRC) P(1, W_SCALAR));
 NATIVE(math_add,
        4,
-       W_MATH "add",
-       "adds " W_SRC "1" W_AND W_SRC "2, write" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       W_MATH W_ADD,
+       W_ADD "s " W_SRC1 W_AND W_SRC2 ", " W_WRITE W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_sub,
        4,
        W_MATH "sub",
-       "substracts " W_SRC "2" W_FROM W_SRC "1" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       "substracts " W_SRC2 W_FROM W_SRC1 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_mul,
        4,
        W_MATH "mul",
-       "multiplies " W_SRC "1" W_AND W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       "multiplies " W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_div,
        4,
        W_MATH "div",
-       "divides " W_SRC "1 by " W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       "divides " W_SRC1 W_BY W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_min,
        4,
        W_MATH "min",
-       "writes the minimum" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       W_WRITE "s" W_THE "minimum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_max,
        4,
        W_MATH "max",
-       "writes the maximum" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2"));
+       W_WRITE "s" W_THE "maximum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 NATIVE(math_clamp,
        5,
        W_MATH "clamp",
@@ -67,8 +67,8 @@ NATIVE(math_clamp,
 NATIVE(math_dot,
        5,
        W_MATH "dot",
-       "writes the dot product" W_OF W_SRC "1" W_AND W_SRC "2" W_TO W_DEST ", after a " W_SHIFT,
-       P(1, W_DEST) P(N, W_SRC "1") P(N, W_SRC "2") P(1, W_SHIFT));
+       W_WRITE "s" W_THE "dot product" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST ", after a " W_SHIFT,
+       P(1, W_DEST) P(N, W_SRC1) P(N, W_SRC2) P(1, W_SHIFT));
 NATIVE(math_stat,
        5,
        W_MATH "stat",
@@ -77,7 +77,7 @@ NATIVE(math_stat,
 NATIVE(math_argbounds,
        4,
        W_MATH "argbounds",
-       "get the indices (argmin, argmax)" W_OF "the limit " W_VALUE "s" W_OF W_SRC,
+       "get" W_THE "indices (argmin, argmax)" W_OF "the limit " W_VALUE "s" W_OF W_SRC,
        P(N, W_SRC) P(1, "argmin") P(1, "argmax"));
 NATIVE(math_sort, 2, W_MATH "sort", "sort " W_ARRAY " in place", P(N, W_ARRAY));
 NATIVE(math_muldiv,
@@ -115,32 +115,32 @@ NATIVE(deque_size, 3, W_DEQUE "." W_SIZE, "report " W_SIZE W_OF W_DEST, P(N, W_D
 NATIVE(deque_get,
        5,
        W_DEQUE ".get",
-       W_FILL " " W_DEST W_FROM W_DEQUE " at index",
-       P(N, W_DEQUE) P(M, W_DEST) P(1, "index"));
+       W_FILL " " W_DEST W_FROM W_DEQUE " at " W_INDEX,
+       P(N, W_DEQUE) P(M, W_DEST) P(1, W_INDEX));
 NATIVE(deque_set,
        5,
        W_DEQUE ".set",
-       "copies " W_SRC W_TO W_DEQUE " at index",
-       P(N, W_DEQUE) P(M, W_SRC) P(1, "index"));
+       "copies " W_SRC W_TO W_DEQUE " at " W_INDEX,
+       P(N, W_DEQUE) P(M, W_SRC) P(1, W_INDEX));
 NATIVE(deque_insert,
        5,
        W_DEQUE "." W_INSERT,
-       W_SHIFT " " W_DEQUE " at index by len(" W_SRC ")" W_AND W_INSERT " " W_SRC,
-       P(N, W_DEQUE) P(M, W_SRC) P(1, "index"));
+       W_SHIFT " " W_DEQUE " at " W_INDEX W_BY "len(" W_SRC ")" W_AND W_INSERT " " W_SRC,
+       P(N, W_DEQUE) P(M, W_SRC) P(1, W_INDEX));
 NATIVE(deque_erase,
        4,
        W_DEQUE "." W_ERASE,
-       W_SHIFT " " W_DEQUE " at index by len" W_TO W_ERASE,
-       P(N, W_DEQUE) P(1, "index") P(1, "len"));
+       W_SHIFT " " W_DEQUE " at " W_INDEX W_BY "len" W_TO W_ERASE,
+       P(N, W_DEQUE) P(1, W_INDEX) P(1, "len"));
 NATIVE(deque_push_front,
        4,
        W_DEQUE ".push_" W_FRONT,
-       W_INSERT " " W_SRC " before the " W_FRONT W_OF W_DEQUE,
+       W_INSERT " " W_SRC " before" W_THE W_FRONT W_OF W_DEQUE,
        P(N, W_DEQUE) P(M, W_SRC));
 NATIVE(deque_push_back,
        4,
        W_DEQUE ".push_" W_BACK,
-       W_INSERT " " W_SRC " after the " W_BACK W_OF W_DEQUE,
+       W_INSERT " " W_SRC " after" W_THE W_BACK W_OF W_DEQUE,
        P(N, W_DEQUE) P(M, W_SRC));
 NATIVE(deque_pop_front,
        4,
@@ -153,6 +153,6 @@ NATIVE(deque_pop_back,
        W_FILL " " W_DEST W_FROM W_BACK W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
        P(N, W_DEQUE) P(M, W_DEST));
 
-static const vm_native *const standard_natives[NAT_STANDARD_COUNT] = { NAT_STANDARD_LIST };
+static const vm_native standard_natives[NAT_STANDARD_COUNT] = { NAT_STANDARD_LIST };
 
 const vm_native_table nat_standard_table = { standard_natives, NAT_STANDARD_COUNT, nat_words };

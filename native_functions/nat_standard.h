@@ -12,46 +12,65 @@
 
 #include "vm.h"
 
-extern const vm_native nat_math_copy;
-extern const vm_native nat_math_fill;
-extern const vm_native nat_math_addscalar;
-extern const vm_native nat_math_add;
-extern const vm_native nat_math_sub;
-extern const vm_native nat_math_mul;
-extern const vm_native nat_math_div;
-extern const vm_native nat_math_min;
-extern const vm_native nat_math_max;
-extern const vm_native nat_math_clamp;
-extern const vm_native nat_math_dot;
-extern const vm_native nat_math_stat;
-extern const vm_native nat_math_argbounds;
-extern const vm_native nat_math_sort;
-extern const vm_native nat_math_muldiv;
-extern const vm_native nat_math_atan2;
-extern const vm_native nat_math_sin;
-extern const vm_native nat_math_cos;
-extern const vm_native nat_math_rot2;
-extern const vm_native nat_math_sqrt;
-extern const vm_native nat_math_rand;
-extern const vm_native nat_deque_size;
-extern const vm_native nat_deque_get;
-extern const vm_native nat_deque_set;
-extern const vm_native nat_deque_insert;
-extern const vm_native nat_deque_erase;
-extern const vm_native nat_deque_push_front;
-extern const vm_native nat_deque_push_back;
-extern const vm_native nat_deque_pop_front;
-extern const vm_native nat_deque_pop_back;
+// The standard natives by name, in their standard order: X(math_copy) ...
+// Native NAME is the C function nat_NAME_function and the packed
+// description (vm.h, vm_native) nat_NAME_description of nat_standard.c.
+#define NAT_STANDARD_NAMES(X)                                                                      \
+    X(math_copy)                                                                                   \
+    X(math_fill)                                                                                   \
+    X(math_addscalar)                                                                              \
+    X(math_add)                                                                                    \
+    X(math_sub)                                                                                    \
+    X(math_mul)                                                                                    \
+    X(math_div)                                                                                    \
+    X(math_min)                                                                                    \
+    X(math_max)                                                                                    \
+    X(math_clamp)                                                                                  \
+    X(math_dot)                                                                                    \
+    X(math_stat)                                                                                   \
+    X(math_argbounds)                                                                              \
+    X(math_sort)                                                                                   \
+    X(math_muldiv)                                                                                 \
+    X(math_atan2)                                                                                  \
+    X(math_sin)                                                                                    \
+    X(math_cos)                                                                                    \
+    X(math_rot2)                                                                                   \
+    X(math_sqrt)                                                                                   \
+    X(math_rand)                                                                                   \
+    X(deque_size)                                                                                  \
+    X(deque_get)                                                                                   \
+    X(deque_set)                                                                                   \
+    X(deque_insert)                                                                                \
+    X(deque_erase)                                                                                 \
+    X(deque_push_front)                                                                            \
+    X(deque_push_back)                                                                             \
+    X(deque_pop_front)                                                                             \
+    X(deque_pop_back)
+
+// Declares native NAME's function and description.
+#define NAT_DECLARE(name)                                                                          \
+    void nat_##name##_function(vm_state *vm, const int16_t *arguments);                            \
+    extern const char nat_##name##_description[];
+NAT_STANDARD_NAMES(NAT_DECLARE)
+
+// The record (vm_native) of native NAME.
+#define NAT_RECORD(name)                                                                           \
+    {                                                                                              \
+        nat_##name##_function, nat_##name##_description                                            \
+    }
 
 // The standard natives in their standard order, as initialisers of an array
-// of `const vm_native *` (a target's table may add its own before or after).
+// of vm_native (a target's table may add its own before or after).
 #define NAT_STANDARD_LIST                                                                          \
-    &nat_math_copy, &nat_math_fill, &nat_math_addscalar, &nat_math_add, &nat_math_sub,             \
-      &nat_math_mul, &nat_math_div, &nat_math_min, &nat_math_max, &nat_math_clamp, &nat_math_dot,  \
-      &nat_math_stat, &nat_math_argbounds, &nat_math_sort, &nat_math_muldiv, &nat_math_atan2,      \
-      &nat_math_sin, &nat_math_cos, &nat_math_rot2, &nat_math_sqrt, &nat_math_rand,                \
-      &nat_deque_size, &nat_deque_get, &nat_deque_set, &nat_deque_insert, &nat_deque_erase,        \
-      &nat_deque_push_front, &nat_deque_push_back, &nat_deque_pop_front, &nat_deque_pop_back
+    NAT_RECORD(math_copy), NAT_RECORD(math_fill), NAT_RECORD(math_addscalar),                      \
+      NAT_RECORD(math_add), NAT_RECORD(math_sub), NAT_RECORD(math_mul), NAT_RECORD(math_div),      \
+      NAT_RECORD(math_min), NAT_RECORD(math_max), NAT_RECORD(math_clamp), NAT_RECORD(math_dot),    \
+      NAT_RECORD(math_stat), NAT_RECORD(math_argbounds), NAT_RECORD(math_sort),                    \
+      NAT_RECORD(math_muldiv), NAT_RECORD(math_atan2), NAT_RECORD(math_sin), NAT_RECORD(math_cos), \
+      NAT_RECORD(math_rot2), NAT_RECORD(math_sqrt), NAT_RECORD(math_rand), NAT_RECORD(deque_size), \
+      NAT_RECORD(deque_get), NAT_RECORD(deque_set), NAT_RECORD(deque_insert),                      \
+      NAT_RECORD(deque_erase), NAT_RECORD(deque_push_front), NAT_RECORD(deque_push_back),          \
+      NAT_RECORD(deque_pop_front), NAT_RECORD(deque_pop_back)
 
 // Number of entries of NAT_STANDARD_LIST.
 #define NAT_STANDARD_COUNT 30

@@ -65,20 +65,27 @@ static uint16_t sine_entry(uint16_t index, uint16_t *rise)
 #define ATAN_POSITION_BITS   8  // bits kept of the ratio below its top bit
 #define ATAN_BIN_SHIFT       5  // the top 3 of them choose the bin
 #define ATAN_BIN_WEIGHT      (1 << ATAN_BIN_SHIFT)
-static const int16_t ATAN[161] = {
+// The table is kept in two parts, 238 bytes instead of 322: its first
+// ATAN_HEAD_ENTRIES entries, and from the last of them on (ratios above 40),
+// where every entry lies within 255 of pi/2, each entry's distance below
+// pi/2 in a byte.
+#define ATAN_ENTRIES      161
+#define ATAN_HEAD_ENTRIES 76
+static const int16_t ATAN_HEAD[ATAN_HEAD_ENTRIES] = {
     652,   735,   816,   896,   977,   1058,  1139,  1218,  1300,  1459,  1620,  1777,  1935,
     2093,  2250,  2403,  2556,  2868,  3164,  3458,  3748,  4029,  4307,  4578,  4839,  5359,
     5836,  6290,  6720,  7126,  7507,  7861,  8203,  8825,  9357,  9839,  10260, 10640, 10976,
     11281, 11557, 12037, 12425, 12755, 13036, 13277, 13486, 13671, 13837, 14112, 14331, 14514,
     14666, 14796, 14907, 15003, 15091, 15235, 15348, 15441, 15519, 15585, 15642, 15691, 15736,
-    15808, 15865, 15912, 15951, 15984, 16013, 16037, 16060, 16096, 16125, 16148, 16168, 16184,
-    16199, 16211, 16222, 16240, 16255, 16266, 16276, 16284, 16292, 16298, 16303, 16312, 16320,
-    16325, 16331, 16334, 16338, 16341, 16344, 16348, 16352, 16355, 16357, 16360, 16361, 16363,
-    16364, 16366, 16369, 16369, 16371, 16372, 16373, 16373, 16375, 16375, 16377, 16376, 16378,
-    16378, 16378, 16379, 16379, 16380, 16380, 16380, 16382, 16381, 16381, 16381, 16382, 16382,
-    16382, 16382, 16382, 16382, 16384, 16383, 16383, 16383, 16383, 16383, 16383, 16383, 16383,
-    16383, 16383, 16383, 16384, 16384, 16384, 16384, 16384, 16384, 16384, 16384, 16384, 16384,
-    16384, 16384, 16384, 16384, 16384
+    15808, 15865, 15912, 15951, 15984, 16013, 16037, 16060, 16096, 16125, 16148,
+};
+#define ATAN_TAIL_FIRST (ATAN_HEAD_ENTRIES - 1)
+static const uint8_t ATAN_TAIL[ATAN_ENTRIES - ATAN_TAIL_FIRST] = {
+    236, 216, 200, 185, 173, 162, 144, 129, 118, 108, 100, 92, 86, 81, 72, 64, 59, 53,
+    50,  46,  43,  40,  36,  32,  29,  27,  24,  23,  21,  20, 18, 15, 15, 13, 12, 11,
+    11,  9,   9,   7,   8,   6,   6,   6,   5,   5,   4,   4,  4,  2,  3,  3,  3,  2,
+    2,   2,   2,   2,   2,   0,   1,   1,   1,   1,   1,   1,  1,  1,  1,  1,  1,  0,
+    0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,   0,  0,  0,
 };
 
 int16_t nat_sin(int16_t angle)
@@ -124,7 +131,7 @@ int16_t nat_atan2(int16_t y, int16_t x)
         // |y| * 65536 is at most 2^31 in magnitude, and |x| is never -1.
         int32_t ratio = ((int32_t)y_magnitude * ((int32_t)1 << ATAN_FRACTION_BITS)) / x_magnitude;
         if (ratio >= 0 && ratio < ((int32_t)1 << ATAN_LOWEST_OCTAVE)) {
-            angle = nat_wrap(((int32_t)ATAN[0] * ratio) >> ATAN_LOWEST_OCTAVE);
+            angle = nat_wrap(((int32_t)ATAN_HEAD[0] * ratio) >> ATAN_LOWEST_OCTAVE);
         } else {
             // Keep the top bit of the ratio and the ATAN_POSITION_BITS below
             // it, moving one octave (8 bins) on for each bit dropped; modulo
@@ -141,8 +148,16 @@ int16_t nat_atan2(int16_t y, int16_t x)
             // rounded down is ATAN[b] + step w / 32 rounded down (an
             // arithmetic shift), and |step| <= 520 keeps step * w in 16 bits.
             int16_t weight = position & (ATAN_BIN_WEIGHT - 1);
-            int16_t step = (int16_t)(ATAN[bin + 1] - ATAN[bin]);
-            angle = (int16_t)(ATAN[bin] + ((int16_t)(step * weight) >> ATAN_BIN_SHIFT));
+            int16_t entry, step;
+            if (bin < ATAN_TAIL_FIRST) {
+                entry = ATAN_HEAD[bin];
+                step = (int16_t)(ATAN_HEAD[bin + 1] - entry);
+            } else {
+                const uint8_t *below = &ATAN_TAIL[bin - ATAN_TAIL_FIRST];
+                entry = (int16_t)(QUARTER_TURN - below[0]);
+                step = (int16_t)(below[0] - below[1]);
+            }
+            angle = (int16_t)(entry + ((int16_t)(step * weight) >> ATAN_BIN_SHIFT));
         }
         if (x < 0)
             angle = nat_wrap(HALF_TURN - (int32_t)angle);
@@ -174,17 +189,30 @@ int16_t nat_sqrt(int16_t x)
 
 void nat_math_atan2_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_binary(vm, arguments, nat_atan2);
+    nat_elementwise(vm, arguments, 2, nat_atan2);
+}
+
+// nat_sin and nat_cos as element-wise operations (nat_internal.h).
+static int16_t sine_of(int16_t angle, int16_t same)
+{
+    (void)same;
+    return nat_sin(angle);
+}
+
+static int16_t cosine_of(int16_t angle, int16_t same)
+{
+    (void)same;
+    return nat_cos(angle);
 }
 
 void nat_math_sin_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_unary(vm, arguments, nat_sin);
+    nat_elementwise(vm, arguments, 1, sine_of);
 }
 
 void nat_math_cos_function(vm_state *vm, const int16_t *arguments)
 {
-    nat_elementwise_unary(vm, arguments, nat_cos);
+    nat_elementwise(vm, arguments, 1, cosine_of);
 }
 
 void nat_math_rot2_function(vm_state *vm, const int16_t *arguments)

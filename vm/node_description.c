@@ -59,32 +59,32 @@ static int16_t parameter_size(const char *parameter)
     return (int16_t)((uint8_t)*parameter - VM_NATIVE_SIZE_BIAS);
 }
 
-// Texts are cut to 255 bytes. A native whose message would still exceed the
-// payload limit (a broken table) is described by its name alone.
-static native_parts split_native(const char *words, const char *description)
+// Splits `description` into `parts` (through a pointer: a returned struct
+// costs 16-bit chips a copy). Texts are cut to 255 bytes. A native whose
+// message would still exceed the payload limit (a broken table) is
+// described by its name alone.
+static void split_native(const char *words, const char *description, native_parts *parts)
 {
-    native_parts parts;
     const char *end = vm_native_text_end(description);
 
-    parts.documentation = NULL;
+    parts->documentation = NULL;
     if ((uint8_t)*end == VM_NATIVE_DOCUMENTATION_MARK) {
-        parts.documentation = end + 1;
-        end = vm_native_text_end(parts.documentation);
+        parts->documentation = end + 1;
+        end = vm_native_text_end(parts->documentation);
     }
-    parts.parameters = end;
-    parts.parameter_count = 0;
-    parts.payload_length = (uint16_t)(NATIVE_FIXED_BYTES + text_length(words, description) +
-                                      text_length(words, parts.documentation));
+    parts->parameters = end;
+    parts->parameter_count = 0;
+    parts->payload_length = (uint16_t)(NATIVE_FIXED_BYTES + text_length(words, description) +
+                                       text_length(words, parts->documentation));
     for (; *end != '\0'; end = next_parameter(end)) {
-        parts.payload_length += NATIVE_PARAMETER_BYTES + text_length(words, end + 1);
-        parts.parameter_count++;
+        parts->payload_length += NATIVE_PARAMETER_BYTES + text_length(words, end + 1);
+        parts->parameter_count++;
     }
-    if (parts.payload_length > NODE_MAX_PAYLOAD) {
-        parts.documentation = NULL;
-        parts.parameter_count = 0;
-        parts.payload_length = (uint16_t)(NATIVE_FIXED_BYTES + text_length(words, description));
+    if (parts->payload_length > NODE_MAX_PAYLOAD) {
+        parts->documentation = NULL;
+        parts->parameter_count = 0;
+        parts->payload_length = (uint16_t)(NATIVE_FIXED_BYTES + text_length(words, description));
     }
-    return parts;
 }
 
 // A text of a description (or NULL: an empty one) as a protocol string.
@@ -100,12 +100,14 @@ static void put_text(node_state *node, const char *text)
 
 static void send_native(node_state *node, const vm_native *native)
 {
-    native_parts parts = split_native(node->vm.natives.words, native->description);
-    const char *parameter = parts.parameters;
+    native_parts parts;
+    const char *parameter;
     uint16_t i;
 
+    split_native(node->vm.natives.words, vm_native_name(native), &parts);
+    parameter = parts.parameters;
     node_frame_begin(node, NODE_MSG_NATIVE_FUNCTION_DESCRIPTION, parts.payload_length);
-    put_text(node, native->description);
+    put_text(node, vm_native_name(native));
     put_text(node, parts.documentation);
     node_frame_put_u16(node, parts.parameter_count);
     for (i = 0; i < parts.parameter_count; i++) {
@@ -120,7 +122,7 @@ void node_send_description(node_state *node)
 {
     const node_description *description = node->description;
     const vm_memory *memory = &node->vm.memory;
-    uint8_t length = node_string_length(description->name, NODE_MAX_STRING);
+    uint8_t length = node_string_length(description->name);
     uint16_t i;
 
     node_frame_begin(node, NODE_MSG_DESCRIPTION, (uint16_t)(1 + length + DESCRIPTION_FIXED_BYTES));
@@ -143,9 +145,9 @@ void node_send_description(node_state *node)
 
     for (i = 0; i < description->local_event_count; i++) {
         const node_local_event *event = &description->local_events[i];
-        uint8_t name_length = node_string_length(event->name, NODE_MAX_STRING);
+        uint8_t name_length = node_string_length(event->name);
 
-        length = node_string_length(event->description, NODE_MAX_STRING);
+        length = node_string_length(event->description);
         node_frame_begin(
           node, NODE_MSG_LOCAL_EVENT_DESCRIPTION, (uint16_t)(1 + name_length + 1 + length));
         node_frame_put_string(node, event->name, name_length);
@@ -154,7 +156,7 @@ void node_send_description(node_state *node)
     }
 
     for (i = 0; i < native_count(node); i++)
-        send_native(node, node->vm.natives.natives[i]);
+        send_native(node, &node->vm.natives.natives[i]);
 }
 
 // --- fingerprint -------------------------------------------------------------
@@ -217,19 +219,21 @@ uint16_t node_description_fingerprint(const node_description *description,
         const node_named_variable *variable = &description->variables[i];
 
         crc = crc_u16(crc, variable->size);
-        crc = crc_string(crc, variable->name, node_string_length(variable->name, NODE_MAX_STRING));
+        crc = crc_string(crc, variable->name, node_string_length(variable->name));
     }
     for (i = 0; i < description->local_event_count; i++) {
         const char *name = description->local_events[i].name;
 
-        crc = crc_string(crc, name, node_string_length(name, NODE_MAX_STRING));
+        crc = crc_string(crc, name, node_string_length(name));
     }
     for (i = 0; i < count; i++) {
         const char *words = description->natives->words;
-        const char *name = description->natives->natives[i]->description;
-        native_parts parts = split_native(words, name);
-        const char *parameter = parts.parameters;
+        const char *name = vm_native_name(&description->natives->natives[i]);
+        native_parts parts;
+        const char *parameter;
 
+        split_native(words, name, &parts);
+        parameter = parts.parameters;
         crc = crc_text(crc, words, name);
         for (j = 0; j < parts.parameter_count; j++) {
             crc = crc_u16(crc, (uint16_t)parameter_size(parameter));

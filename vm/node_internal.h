@@ -16,9 +16,9 @@ void node_frame_put_u16(node_state *node, uint16_t value);
 void node_frame_put_string(node_state *node, const char *text, uint8_t length);
 void node_frame_end(node_state *node);
 
-// Bytes of `text` that fit in `limit` (at most 255) without cutting a UTF-8
+// Bytes of `text` that fit a protocol string (255) without cutting a UTF-8
 // character; 0 for NULL.
-uint8_t node_string_length(const char *text, uint16_t limit);
+uint8_t node_string_length(const char *text);
 
 // Sends a frame whose payload is `count` uint16 words.
 void node_send_words(node_state *node, uint16_t type, const uint16_t *words, uint16_t count);

@@ -64,15 +64,13 @@ void node_frame_end(node_state *node)
     flush(node, true);
 }
 
-uint8_t node_string_length(const char *text, uint16_t limit)
+uint8_t node_string_length(const char *text)
 {
     uint16_t length = 0;
 
     if (text == NULL)
         return 0;
-    if (limit > NODE_MAX_STRING)
-        limit = NODE_MAX_STRING;
-    while (length < limit && text[length] != '\0')
+    while (length < NODE_MAX_STRING && text[length] != '\0')
         length++;
     // Cut before a character, not inside one, when the text goes on.
     if (text[length] != '\0') {
@@ -97,7 +95,7 @@ void node_send_words(node_state *node, uint16_t type, const uint16_t *words, uin
 
 void node_send_word_and_string(node_state *node, uint16_t type, uint16_t word, const char *text)
 {
-    uint8_t length = node_string_length(text, NODE_MAX_STRING);
+    uint8_t length = node_string_length(text);
 
     node_frame_begin(node, type, (uint16_t)(2 + 1 + length));
     node_frame_put_u16(node, word);
@@ -144,33 +142,18 @@ static void on_emit(void *context, uint16_t event, const int16_t *payload, uint1
     node_send_user_event((node_state *)context, event, payload, count);
 }
 
-static void on_execution_state_changed(void *context, uint16_t pc, uint16_t flags)
+// The VM's reports are coded as their message types (vm.h).
+typedef char reports_are_message_types
+  [VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS == NODE_MSG_ARRAY_ACCESS_OUT_OF_BOUNDS &&
+       VM_REPORT_DIVISION_BY_ZERO == NODE_MSG_DIVISION_BY_ZERO &&
+       VM_REPORT_EVENT_EXECUTION_KILLED == NODE_MSG_EVENT_EXECUTION_KILLED &&
+       VM_REPORT_EXECUTION_STATE_CHANGED == NODE_MSG_EXECUTION_STATE_CHANGED
+     ? 1
+     : -1];
+
+static void on_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
 {
-    uint16_t words[2];
-
-    words[0] = pc;
-    words[1] = flags;
-    node_send_words((node_state *)context, NODE_MSG_EXECUTION_STATE_CHANGED, words, 2);
-}
-
-static void on_event_killed(void *context, uint16_t pc)
-{
-    node_send_words((node_state *)context, NODE_MSG_EVENT_EXECUTION_KILLED, &pc, 1);
-}
-
-static void on_array_access_out_of_bounds(void *context, uint16_t pc, uint16_t size, uint16_t index)
-{
-    uint16_t words[3];
-
-    words[0] = pc;
-    words[1] = size;
-    words[2] = index;
-    node_send_words((node_state *)context, NODE_MSG_ARRAY_ACCESS_OUT_OF_BOUNDS, words, 3);
-}
-
-static void on_division_by_zero(void *context, uint16_t pc)
-{
-    node_send_words((node_state *)context, NODE_MSG_DIVISION_BY_ZERO, &pc, 1);
+    node_send_words((node_state *)context, type, words, count);
 }
 
 static void on_node_specific_error(void *context, uint16_t pc, const char *message)
@@ -180,9 +163,6 @@ static void on_node_specific_error(void *context, uint16_t pc, const char *messa
 
 const vm_callbacks node_vm_callbacks = {
     on_emit,
-    on_execution_state_changed,
-    on_event_killed,
-    on_array_access_out_of_bounds,
-    on_division_by_zero,
+    on_report,
     on_node_specific_error,
 };

@@ -82,27 +82,41 @@ uint16_t vm_setup_event(vm_state *vm, uint16_t event)
     if (address == 0)
         return 0;
     if (vm->flags & VM_FLAG_EVENT_ACTIVE)
-        vm->callbacks->event_killed(vm->context, vm->pc);
+        vm_report(vm, VM_REPORT_EVENT_EXECUTION_KILLED, 1, 0);
     vm->pc = address;
     vm->sp = -1;
     vm->flags |= VM_FLAG_EVENT_ACTIVE;
     if (vm->flags & VM_FLAG_STEP_BY_STEP)
-        vm->callbacks->execution_state_changed(vm->context, vm->pc, vm->flags);
+        vm_report_state(vm);
     return address;
+}
+
+void vm_report(vm_state *vm, uint16_t type, uint16_t count, uint16_t second)
+{
+    uint16_t words[2];
+
+    words[0] = vm->pc;
+    words[1] = second;
+    vm->callbacks->report(vm->context, type, words, count);
 }
 
 // --- errors: each stops the VM and sends one report --------------------------
 
 void vm_error_array_access(vm_state *vm, uint16_t size, uint16_t index)
 {
+    uint16_t words[3];
+
     vm->flags = VM_FLAG_STEP_BY_STEP;
-    vm->callbacks->array_access_out_of_bounds(vm->context, vm->pc, size, index);
+    words[0] = vm->pc;
+    words[1] = size;
+    words[2] = index;
+    vm->callbacks->report(vm->context, VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS, words, 3);
 }
 
 void vm_error_division_by_zero(vm_state *vm)
 {
     vm->flags = VM_FLAG_STEP_BY_STEP;
-    vm->callbacks->division_by_zero(vm->context, vm->pc);
+    vm_report(vm, VM_REPORT_DIVISION_BY_ZERO, 1, 0);
 }
 
 void vm_error_node_specific(vm_state *vm, const char *message)
@@ -515,11 +529,12 @@ branch_false:
 
     VM_CASE(NATIVE_CALL)
     {
-        const vm_native *native = vm->natives.natives[word & VM_OPERAND_MASK];
+        const vm_native *native = &vm->natives.natives[word & VM_OPERAND_MASK];
         int16_t arguments[VM_MAX_NATIVE_ARGUMENTS];
+        uint16_t count = vm_native_stack_words(native);
         uint16_t i;
 
-        for (i = 0; i < native->stack_words; i++)
+        for (i = 0; i < count; i++)
             arguments[i] = *--next;
         save_state(vm, ip, next);
         native->function(vm, arguments);
@@ -570,20 +585,26 @@ leave:
 division_by_zero:
     // The instruction completes with a result of 0, then the VM stops: an
     // arithmetic one leaves 0 and moves pc on, a branch takes its false path.
-    // Both operands are still on the stack here.
-    save_state(vm, ip, next);
-    if ((word >> VM_OPCODE_SHIFT) == VM_OP_BINARY_ARITHMETIC) {
-        next[-2] = 0;
-        vm->sp--;
+    // Both operands are still on the stack here. The report names the faulty
+    // instruction, so pc moves on after it (one report call for both: less
+    // code).
+    {
+        int16_t move;
+
+        save_state(vm, ip, next);
+        if ((word >> VM_OPCODE_SHIFT) == VM_OP_BINARY_ARITHMETIC) {
+            next[-2] = 0;
+            vm->sp--;
+            move = 1;
+        } else {
+            vm->sp = (int16_t)(vm->sp - 2);
+            *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
+            move = (int16_t)ip[1];
+        }
         vm_error_division_by_zero(vm);
-        vm->pc++;
-    } else {
-        vm->sp = (int16_t)(vm->sp - 2);
-        *ip = (uint16_t)(word & ~VM_BRANCH_WAS_TRUE_BIT);
-        vm_error_division_by_zero(vm);
-        vm->pc = (uint16_t)(vm->pc + (int16_t)ip[1]);
+        vm->pc = (uint16_t)(vm->pc + move);
+        return RUN_ERROR;
     }
-    return RUN_ERROR;
 
 array_out_of_bounds:
     // pc stays on the faulty instruction (bytecode.md §8.1).
@@ -620,7 +641,7 @@ static enum run_outcome run_to_breakpoint(vm_state *vm, uint16_t budget)
         if (at_breakpoint(vm, vm->pc)) {
             // EVENT_RUNNING stays set, as upstream reports it (flags 7).
             vm->flags |= VM_FLAG_STEP_BY_STEP;
-            vm->callbacks->execution_state_changed(vm->context, vm->pc, vm->flags);
+            vm_report_state(vm);
             return RUN_BREAKPOINT;
         }
         outcome = execute(vm, 1, true);

@@ -31,44 +31,63 @@
 
 typedef struct vm_state vm_state;
 
+// The reports whose payloads are words (protocol.md §5), the pc first. The
+// codes are the protocol's message types, so that a node sends a report as
+// it comes: one callback instead of one per report, less code on both sides.
+#define VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS 0x9006 // pc, size, index; the VM is stopped
+#define VM_REPORT_DIVISION_BY_ZERO           0x9007 // pc; the VM is stopped
+#define VM_REPORT_EVENT_EXECUTION_KILLED     0x9008 // pc: a new event abandoned the running one
+#define VM_REPORT_EXECUTION_STATE_CHANGED    0x900A // pc, flags
+
 // What the VM tells the node. Each callback receives the `context` given at
 // vm_init. Payloads are those of protocol.md §5.
 typedef struct vm_callbacks {
     // EMIT: a user event with `count` words, to every other node and host.
     void (*emit)(void *context, uint16_t event, const int16_t *payload, uint16_t count);
-    // EXECUTION_STATE_CHANGED(pc, flags).
-    void (*execution_state_changed)(void *context, uint16_t pc, uint16_t flags);
-    // EVENT_EXECUTION_KILLED(pc): a new event abandoned the running handler.
-    void (*event_killed)(void *context, uint16_t pc);
-    // ARRAY_ACCESS_OUT_OF_BOUNDS(pc, size, index); the VM is stopped.
-    void (*array_access_out_of_bounds)(void *context, uint16_t pc, uint16_t size, uint16_t index);
-    // DIVISION_BY_ZERO(pc); the VM is stopped.
-    void (*division_by_zero)(void *context, uint16_t pc);
+    // A report of type VM_REPORT_..., with its `count` words.
+    void (*report)(void *context, uint16_t type, const uint16_t *words, uint16_t count);
     // NODE_SPECIFIC_ERROR(pc, message); the VM is stopped.
     void (*node_specific_error)(void *context, uint16_t pc, const char *message);
 } vm_callbacks;
 
 // A native function. Before the call the VM has popped the function's
-// `stack_words` words into `arguments` (arguments[0] was the top of the
-// stack); the function reaches variables only through vm_variables().
+// stack words (vm_native_stack_words) into `arguments` (arguments[0] was
+// the top of the stack); the function reaches variables only through
+// vm_variables().
 typedef void (*vm_native_function)(vm_state *vm, const int16_t *arguments);
 
-// A native function as a node's table lists it. `description` is what
-// NATIVE_FUNCTION_DESCRIPTION says of it (protocol.md §5.5), packed into one
-// string so that a table costs a few bytes per native:
+// A native function as a node's table lists it: its C function and its
+// description, one packed string so that a table costs a few bytes per
+// native. The description starts with the native's stack words, one byte
+// (parameters + size words, bytecode.md §9; at most VM_MAX_NATIVE_ARGUMENTS),
+// then says what NATIVE_FUNCTION_DESCRIPTION says of it (protocol.md §5.5):
 //
-//   name [ VM_NATIVE_DOCUMENTATION_MARK documentation ] { size parameter-name }
+//   stack-words name [ VM_NATIVE_DOCUMENTATION_MARK documentation ]
+//   { size parameter-name }
 //
 // Texts are bytes from VM_NATIVE_TEXT_FIRST (0x20); in a table with a
 // dictionary (vm_native_table.words) each byte from VM_NATIVE_WORD_FIRST
 // (0x80) stands for a word of it. A parameter starts with its size plus
 // VM_NATIVE_SIZE_BIAS, one byte below 0x20: sizes -15 to 14 (> 0 fixed, < 0
-// template id, 0 any size). vm_native_text expands a text.
+// template id, 0 any size). vm_native_text expands a text. Keeping the stack
+// words in the string rather than in a field of their own saves the field's
+// padding: a record is two pointers.
 typedef struct vm_native {
     vm_native_function function;
-    uint8_t stack_words; // parameters + size words (bytecode.md §9)
     const char *description;
 } vm_native;
+
+// The words the VM pops for `native`.
+static inline uint16_t vm_native_stack_words(const vm_native *native)
+{
+    return (uint8_t)native->description[0];
+}
+
+// The description of `native` from its name on.
+static inline const char *vm_native_name(const vm_native *native)
+{
+    return native->description + 1;
+}
 
 #define VM_NATIVE_DOCUMENTATION_MARK 0x1F
 #define VM_NATIVE_SIZE_BIAS          0x10
@@ -77,9 +96,11 @@ typedef struct vm_native {
 
 // The natives a node exports, in NATIVE_CALL order; the same order is sent in
 // NATIVE_FUNCTION_DESCRIPTION messages. Tables are data: a target may chain
-// the standard one after its own by listing both.
+// the standard natives after its own by listing both (nat_standard.h). The
+// records themselves, not pointers to them, so that a table costs no
+// pointer per native.
 typedef struct vm_native_table {
-    const vm_native *const *natives;
+    const vm_native *natives;
     uint16_t count;
     // The words of the descriptions' bytes from VM_NATIVE_WORD_FIRST, in
     // order, each ended by a NUL, the last by two; NULL when those bytes

@@ -9,7 +9,7 @@
 
 void vm_report_state(vm_state *vm)
 {
-    vm->callbacks->execution_state_changed(vm->context, vm->pc, vm->flags);
+    vm_report(vm, VM_REPORT_EXECUTION_STATE_CHANGED, 2, vm->flags);
 }
 
 void vm_reset(vm_state *vm)

@@ -19,6 +19,10 @@ extern const char vm_error_unknown_native[];
 extern const char vm_error_event_too_large[];
 extern const char vm_error_invalid_jump[];
 
+// Sends report `type` (VM_REPORT_...) of `count` words, 1 or 2: the pc,
+// then `second`.
+void vm_report(vm_state *vm, uint16_t type, uint16_t count, uint16_t second);
+
 // For RUN and STEP of a program the verifier refused: reports why, at the
 // faulty instruction, as a run-time error (which stops the VM).
 void vm_report_rejection(vm_state *vm);

@@ -87,7 +87,7 @@ static uint16_t pops_of(const vm_state *vm, uint16_t word)
     uint16_t operand = word & VM_OPERAND_MASK;
 
     if (opcode_of(word) == VM_OP_NATIVE_CALL && operand < vm->natives.count)
-        return vm->natives.natives[operand]->stack_words;
+        return vm_native_stack_words(&vm->natives.natives[operand]);
     return opcode_shapes[opcode_of(word)] >> SHAPE_POPS_SHIFT & SHAPE_POPS_MASK;
 }
 

@@ -64,8 +64,6 @@ void on_emit(void *context, uint16_t event, const int16_t *, uint16_t count)
     report_of(context).log << "  emit event " << event << " (" << count << " words)\n";
 }
 
-void on_state_changed(void *, uint16_t, uint16_t) {}
-
 void on_event_killed(void *context, uint16_t pc)
 {
     report_of(context).log << "  event killed at pc " << pc << "\n";
@@ -90,8 +88,20 @@ void on_node_specific_error(void *context, uint16_t pc, const char *message)
     report_of(context).log << "  NODE_SPECIFIC_ERROR pc " << pc << ": " << message << "\n";
 }
 
-const vm_callbacks callbacks = { on_emit,         on_state_changed,    on_event_killed,
-                                 on_array_access, on_division_by_zero, on_node_specific_error };
+// The VM's word reports, state changes left out.
+void on_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
+{
+    if (type == VM_REPORT_EVENT_EXECUTION_KILLED && count == 1)
+        on_event_killed(context, words[0]);
+    else if (type == VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS && count == 3)
+        on_array_access(context, words[0], words[1], words[2]);
+    else if (type == VM_REPORT_DIVISION_BY_ZERO && count == 1)
+        on_division_by_zero(context, words[0]);
+    else if (type != VM_REPORT_EXECUTION_STATE_CHANGED)
+        on_node_specific_error(context, count > 0 ? words[0] : 0, "unexpected report");
+}
+
+const vm_callbacks callbacks = { on_emit, on_report, on_node_specific_error };
 
 // The node: memory, VM and what it reported.
 struct TestNode {

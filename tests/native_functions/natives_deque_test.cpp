@@ -266,11 +266,11 @@ TEST(NativeRobustness, RandomArgumentsNeverMisbehave)
     std::uniform_int_distribution<int> coin(0, 3);
     OurNode node(64);
     for (int trial = 0; trial < 30000; ++trial) {
-        const vm_native &native = *nat_standard_table.natives[trial % NAT_STANDARD_COUNT];
+        const vm_native &native = nat_standard_table.natives[trial % NAT_STANDARD_COUNT];
         for (auto &word : node.variables)
             word = static_cast<int16_t>(coin(random) == 0 ? any_word(random) : small_word(random));
         Words popped;
-        for (int w = 0; w < native.stack_words; ++w)
+        for (int w = 0; w < vm_native_stack_words(&native); ++w)
             popped.push_back(
               static_cast<int16_t>(coin(random) == 0 ? any_word(random) : small_word(random)));
         node.errors.clear();

@@ -95,7 +95,7 @@ TEST(NativeDescriptions, MatchTheSpecificationTable)
     ASSERT_EQ(nat_standard_table.count, NAT_STANDARD_COUNT);
     ASSERT_EQ(rows.size(), nat_standard_table.count);
     for (const Row &row : rows) {
-        const auto native = description_of(*nat_standard_table.natives[row.id]);
+        const auto native = description_of(nat_standard_table.natives[row.id]);
         EXPECT_EQ(native.name, row.name);
         EXPECT_EQ(native.description, row.description) << row.name;
         ASSERT_EQ(native.parameters.size(), row.parameters.size()) << row.name;
@@ -111,7 +111,7 @@ TEST(NativeDescriptions, MatchTheReferenceDescriptions)
     const AsebaNativeFunctionDescription *reference[] = { ASEBA_NATIVES_STD_DESCRIPTIONS };
     ASSERT_EQ(sizeof reference / sizeof reference[0], nat_standard_table.count);
     for (uint16_t n = 0; n < nat_standard_table.count; ++n) {
-        const auto native = description_of(*nat_standard_table.natives[n]);
+        const auto native = description_of(nat_standard_table.natives[n]);
         EXPECT_EQ(native.name, reference[n]->name);
         EXPECT_EQ(native.description, reference[n]->doc);
         size_t count = 0;
@@ -127,11 +127,12 @@ TEST(NativeDescriptions, MatchTheReferenceDescriptions)
 
 TEST(NativeDescriptions, StackWordsFollowTheCallingConvention)
 {
-    std::vector<const vm_native *> natives(nat_standard_table.natives,
-                                           nat_standard_table.natives + nat_standard_table.count);
-    for (const vm_native *native : { NAT_DSP_LIST })
-        natives.push_back(native);
-    for (const vm_native *native : natives) {
+    const vm_native dsp_natives[] = { NAT_DSP_LIST };
+    std::vector<vm_native> natives(nat_standard_table.natives,
+                                   nat_standard_table.natives + nat_standard_table.count);
+    natives.insert(natives.end(), std::begin(dsp_natives), std::end(dsp_natives));
+    for (const vm_native &record : natives) {
+        const vm_native *native = &record;
         const auto description = description_of(*native);
         size_t any_size = 0;
         std::set<int> templates;
@@ -141,7 +142,8 @@ TEST(NativeDescriptions, StackWordsFollowTheCallingConvention)
             if (parameter.size < 0)
                 templates.insert(parameter.size);
         }
-        EXPECT_EQ(native->stack_words, description.parameters.size() + any_size + templates.size())
+        EXPECT_EQ(vm_native_stack_words(native),
+                  description.parameters.size() + any_size + templates.size())
           << description.name;
         EXPECT_NE(native->function, nullptr) << description.name;
     }
@@ -165,12 +167,13 @@ TEST(NativeDescriptions, UseTheWordsOfTheDictionary)
 #undef CHECK_WORD
     EXPECT_EQ(size_t(code - VM_NATIVE_WORD_FIRST), words.size());
 
-    std::vector<const vm_native *> natives(nat_standard_table.natives,
-                                           nat_standard_table.natives + nat_standard_table.count);
-    for (const vm_native *native : { NAT_DSP_LIST })
-        natives.push_back(native);
-    for (const vm_native *native : natives) {
-        for (const char *byte = native->description; *byte != '\0'; ++byte) {
+    const vm_native dsp_natives[] = { NAT_DSP_LIST };
+    std::vector<vm_native> natives(nat_standard_table.natives,
+                                   nat_standard_table.natives + nat_standard_table.count);
+    natives.insert(natives.end(), std::begin(dsp_natives), std::end(dsp_natives));
+    for (const vm_native &record : natives) {
+        const vm_native *native = &record;
+        for (const char *byte = vm_native_name(native); *byte != '\0'; ++byte) {
             if (uint8_t(*byte) >= VM_NATIVE_WORD_FIRST) {
                 EXPECT_LT(size_t(uint8_t(*byte) - VM_NATIVE_WORD_FIRST), words.size())
                   << description_of(*native).name;
@@ -181,10 +184,12 @@ TEST(NativeDescriptions, UseTheWordsOfTheDictionary)
 
 TEST(NativeDescriptions, ListMacroGivesTheTableOrder)
 {
-    const vm_native *const listed[] = { NAT_STANDARD_LIST };
+    const vm_native listed[] = { NAT_STANDARD_LIST };
     ASSERT_EQ(sizeof listed / sizeof listed[0], static_cast<size_t>(NAT_STANDARD_COUNT));
-    for (int n = 0; n < NAT_STANDARD_COUNT; ++n)
-        EXPECT_EQ(listed[n], nat_standard_table.natives[n]);
+    for (int n = 0; n < NAT_STANDARD_COUNT; ++n) {
+        EXPECT_EQ(listed[n].function, nat_standard_table.natives[n].function);
+        EXPECT_EQ(listed[n].description, nat_standard_table.natives[n].description);
+    }
 }
 
 } // namespace

@@ -93,7 +93,7 @@ class MathReferenceTest : public ::testing::TestWithParam<int>
 TEST_P(MathReferenceTest, RandomCallsMatchTheReference)
 {
     const int id = GetParam();
-    const vm_native &native = *nat_standard_table.natives[id];
+    const vm_native &native = nat_standard_table.natives[id];
     const auto description = description_of(native);
     const std::string name = description.name;
     const int parameter_count = int(description.parameters.size());
@@ -121,7 +121,7 @@ TEST_P(MathReferenceTest, RandomCallsMatchTheReference)
             addresses.push_back(static_cast<int16_t>(address));
         }
         Words popped = addresses;
-        if (native.stack_words > parameter_count)
+        if (vm_native_stack_words(&native) > parameter_count)
             popped.push_back(static_cast<int16_t>(size));
 
         Words memory(memory_words);
@@ -164,7 +164,7 @@ INSTANTIATE_TEST_SUITE_P(StandardMath,
                          ::testing::Range(0, 21),
                          [](const ::testing::TestParamInfo<int> &entry) {
                              std::string name =
-                               description_of(*nat_standard_table.natives[entry.param]).name;
+                               description_of(nat_standard_table.natives[entry.param]).name;
                              std::replace(name.begin(), name.end(), '.', '_');
                              return name;
                          });
@@ -227,7 +227,7 @@ TEST(DequeReference, RandomOperationsMatchTheReference)
         const int index = std::uniform_int_distribution<int>(-2, capacity + 1)(random);
         const int erase_length = std::uniform_int_distribution<int>(-1, capacity)(random);
         const int id = std::uniform_int_distribution<int>(21, 29)(random);
-        const vm_native &native = *nat_standard_table.natives[id];
+        const vm_native &native = nat_standard_table.natives[id];
         const std::string name = description_of(native).name;
 
         Words memory(memory_words);

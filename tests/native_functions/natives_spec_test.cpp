@@ -483,7 +483,7 @@ TEST(NativeMath, SpansOutsideTheVariablesStopTheVmAndTouchNothing)
 TEST(NativeMath, EveryTemplatedNativeDoesNothingForSizeZero)
 {
     for (uint16_t n = 0; n < nat_standard_table.count; ++n) {
-        const vm_native &native = *nat_standard_table.natives[n];
+        const vm_native &native = nat_standard_table.natives[n];
         const auto description = description_of(native);
         bool has_template = false;
         for (const auto &parameter : description.parameters)
@@ -499,7 +499,7 @@ TEST(NativeMath, EveryTemplatedNativeDoesNothingForSizeZero)
         Words popped;
         for (size_t p = 0; p < description.parameters.size(); ++p)
             popped.push_back(static_cast<int16_t>(10 * p));
-        while (popped.size() < native.stack_words)
+        while (popped.size() < vm_native_stack_words(&native))
             popped.push_back(0);
         node.call(native, popped);
         EXPECT_FALSE(node.stopped()) << name;

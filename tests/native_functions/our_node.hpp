@@ -13,6 +13,12 @@ extern "C" {
 #include "vm.h"
 }
 
+// Each standard native's record by name (nat_math_copy, ...), to call one
+// alone: the library has only the list (nat_standard.h).
+#define OUR_NODE_RECORD(name) inline const vm_native nat_##name = NAT_RECORD(name);
+NAT_STANDARD_NAMES(OUR_NODE_RECORD)
+#undef OUR_NODE_RECORD
+
 // What `native`, of the standard or DSP natives, says of itself: its packed
 // description expanded with their words (nat_words.h).
 aseba::NativeFunction description_of(const vm_native &native);

@@ -29,12 +29,12 @@ constexpr uint16_t local_event_base = 0xFFFE; // first local event (init is 0xFF
 aseba::TargetDescription epuck_with_dsp()
 {
     auto target = aseba::epuck_target();
-    const vm_native *const natives[] = { NAT_DSP_LIST };
+    const vm_native natives[] = { NAT_DSP_LIST };
     EXPECT_EQ(target.native_functions.size(), size_t(NAT_STANDARD_COUNT + NAT_DSP_COUNT));
     for (size_t i = 0; i < NAT_DSP_COUNT && NAT_STANDARD_COUNT + i < target.native_functions.size();
          ++i)
         EXPECT_EQ(target.native_functions[NAT_STANDARD_COUNT + i].name,
-                  description_of(*natives[i]).name);
+                  description_of(natives[i]).name);
     return target;
 }
 

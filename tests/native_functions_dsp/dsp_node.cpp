@@ -12,7 +12,7 @@ extern "C" {
 
 aseba::NativeFunction description_of(const vm_native &native)
 {
-    const vm_native *list[] = { &native };
+    const vm_native list[] = { native };
     return aseba::native_function(vm_native_table{ list, 1, nat_words }, 0);
 }
 
@@ -25,8 +25,6 @@ DspNode &node_of(void *context)
 }
 
 void ignore_emit(void *, uint16_t, const int16_t *, uint16_t) {}
-void ignore_state(void *, uint16_t, uint16_t) {}
-void ignore_killed(void *, uint16_t) {}
 
 void record_array_access(void *context, uint16_t pc, uint16_t, uint16_t)
 {
@@ -43,13 +41,22 @@ void record_node_specific(void *context, uint16_t pc, const char *message)
     node_of(context).errors.push_back({ DspError::Kind::node_specific, pc, message });
 }
 
-const vm_callbacks recording_callbacks = {
-    ignore_emit,         ignore_state, ignore_killed, record_array_access, record_division_by_zero,
-    record_node_specific
-};
+// Records the errors among the VM's word reports; state changes and killed
+// events are not errors.
+void record_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
+{
+    if (type == VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS && count == 3)
+        record_array_access(context, words[0], words[1], words[2]);
+    else if (type == VM_REPORT_DIVISION_BY_ZERO && count == 1)
+        record_division_by_zero(context, words[0]);
+    else if (type != VM_REPORT_EXECUTION_STATE_CHANGED && type != VM_REPORT_EVENT_EXECUTION_KILLED)
+        record_node_specific(context, count > 0 ? words[0] : 0, "unexpected report");
+}
+
+const vm_callbacks recording_callbacks = { ignore_emit, record_report, record_node_specific };
 
 // The e-puck's order: standard natives first, then the DSP natives.
-const vm_native *const epuck_like_natives[] = { NAT_STANDARD_LIST, NAT_DSP_LIST };
+const vm_native epuck_like_natives[] = { NAT_STANDARD_LIST, NAT_DSP_LIST };
 const vm_native_table epuck_like_table = { epuck_like_natives,
                                            NAT_STANDARD_COUNT + NAT_DSP_COUNT,
                                            nat_words };
@@ -77,7 +84,7 @@ DspNode::DspNode(uint16_t variables_size, uint16_t bytecode_words, uint16_t args
 
 void DspNode::call(const vm_native &native, const std::vector<int16_t> &popped_words)
 {
-    if (popped_words.size() != native.stack_words)
+    if (popped_words.size() != vm_native_stack_words(&native))
         throw std::invalid_argument("wrong argument count for " + description_of(native).name);
     vm.pc = call_pc;
     vm.flags = VM_FLAG_EVENT_ACTIVE | VM_FLAG_EVENT_RUNNING;

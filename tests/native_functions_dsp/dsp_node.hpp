@@ -18,6 +18,12 @@ extern "C" {
 
 using Words = std::vector<int16_t>;
 
+// Each DSP native's record by name (nat_dsp_fft, ...), to call one alone:
+// the library has only the list (nat_dsp.h).
+#define DSP_NODE_RECORD(name) inline const vm_native nat_##name = NAT_RECORD(name);
+NAT_DSP_NAMES(DSP_NODE_RECORD)
+#undef DSP_NODE_RECORD
+
 // What `native`, of the standard or DSP natives, says of itself: its packed
 // description expanded with their words (nat_words.h).
 aseba::NativeFunction description_of(const vm_native &native);

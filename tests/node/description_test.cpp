@@ -148,12 +148,14 @@ Bytes operator+(Bytes first, const Bytes &second)
     return first;
 }
 
-// A packed native description (vm.h): name, documentation, parameters.
-std::string packed(const std::string &name,
+// A packed native description (vm.h): stack words, name, documentation,
+// parameters.
+std::string packed(int stack_words,
+                   const std::string &name,
                    const std::string &documentation,
                    const std::vector<std::pair<int, std::string>> &parameters)
 {
-    std::string description = name + '\x1F' + documentation;
+    std::string description = char(stack_words) + name + '\x1F' + documentation;
     for (const auto &[size, parameter] : parameters)
         description += char(0x10 + size) + parameter;
     return description;
@@ -166,20 +168,20 @@ struct LongStrings {
     std::string utf8_name = std::string(254, 'u') + "\xE2\x82\xAC" + "tail";
     std::string long_text = std::string(400, 'd');
     // Its documentation cut to 255 bytes; the message fits then.
-    std::string cut = packed("cut", long_text, { { -1, std::string(200, 'p') } });
+    std::string cut = packed(2, "cut", long_text, { { -1, std::string(200, 'p') } });
     // More than a message holds even with its texts cut: sent by name alone.
-    std::string too_long = packed(long_name,
+    std::string too_long = packed(3,
+                                  long_name,
                                   long_text,
                                   { { -1, std::string(200, 'a') },
                                     { -2, std::string(200, 'b') },
                                     { -3, std::string(200, 'c') } });
     std::string many =
-      packed("many", "", std::vector<std::pair<int, std::string>>(200, { 1, "p" }));
-    vm_native natives[3] = { { nullptr, 2, cut.c_str() },
-                             { nullptr, 3, too_long.c_str() },
-                             { nullptr, 0, many.c_str() } };
-    const vm_native *list[3] = { &natives[0], &natives[1], &natives[2] };
-    vm_native_table table{ list, 3, nullptr };
+      packed(0, "many", "", std::vector<std::pair<int, std::string>>(200, { 1, "p" }));
+    vm_native natives[3] = { { nullptr, cut.c_str() },
+                             { nullptr, too_long.c_str() },
+                             { nullptr, many.c_str() } };
+    vm_native_table table{ natives, 3, nullptr };
     node_named_variable variables[3];
     node_local_event events[1];
     node_description description{};
@@ -253,12 +255,10 @@ TEST(NodeDescription, CutsLongStringsToWellFormedMessages)
 TEST(NodeDescription, ExpandsTheWordsOfTheDictionary)
 {
     const char words[] = "alpha\0beta\0";
-    const vm_native native = { nullptr,
-                               1,
-                               "\x81.\x80\x1F"
-                               "\x80 and \x81\x11"
-                               "x\x81" };
-    const vm_native *list[] = { &native };
+    const vm_native list[] = { { nullptr,
+                                 "\x01\x81.\x80\x1F"
+                                 "\x80 and \x81\x11"
+                                 "x\x81" } };
     node_named_variable variables[] = { { "id", 1 }, { "source", 1 }, { "args", 2 } };
     for (const char *dictionary : { words, static_cast<const char *>(nullptr) }) {
         vm_native_table table{ list, 1, dictionary };

@@ -49,20 +49,20 @@ void test_fill(vm_state *vm, const int16_t *arguments)
         dest[i] = *value;
 }
 
-// Packed descriptions (vm.h): name, 0x1F and the documentation, then each
-// parameter's size + 0x10 and its name.
+// Packed descriptions (vm.h): stack words, name, 0x1F and the
+// documentation, then each parameter's size + 0x10 and its name.
 const vm_native test_sqrt_native = { test_sqrt,
-                                     1,
+                                     "\x01"
                                      "test.sqrt\x1F"
                                      "integer square root\x11"
                                      "x" };
 const vm_native test_fill_native = { test_fill,
-                                     3,
+                                     "\x03"
                                      "test.fill\x1F"
                                      "fills dest with value\x0F"
                                      "dest\x11"
                                      "value" };
-const vm_native *const tiny_native_list[] = { &test_sqrt_native, &test_fill_native };
+const vm_native tiny_native_list[] = { test_sqrt_native, test_fill_native };
 const vm_native_table tiny_natives = { tiny_native_list, 2, nullptr };
 
 const node_named_variable tiny_variables[] = { { "id", 1 },

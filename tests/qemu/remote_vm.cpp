@@ -17,6 +17,16 @@ using qemu_test::Writer;
 namespace
 {
 
+// Reads `count` words at `reader` and hands them to the VM's report
+// callback as report `type`.
+void report(vm_state *vm, uint16_t type, Reader &reader, uint16_t count)
+{
+    uint16_t words[3] = {};
+    for (uint16_t i = 0; i < count; ++i)
+        words[i] = reader.u16();
+    vm->callbacks->report(vm->context, type, words, count);
+}
+
 // Hands the events at `reader` to the VM's callbacks, in order; returns at
 // the first one that is not the VM's (a node's), or at the end, with that
 // event's kind.
@@ -34,19 +44,10 @@ uint8_t dispatch_vm_events(vm_state *vm, Reader &reader)
             callbacks->emit(vm->context, event, payload.data(), uint16_t(payload.size()));
             break;
         }
-        case REMOTE_EVENT_STATE: {
-            uint16_t pc = reader.u16();
-            callbacks->execution_state_changed(vm->context, pc, reader.u16());
-            break;
-        }
-        case REMOTE_EVENT_KILLED: callbacks->event_killed(vm->context, reader.u16()); break;
-        case REMOTE_EVENT_ARRAY: {
-            uint16_t pc = reader.u16();
-            uint16_t size = reader.u16();
-            callbacks->array_access_out_of_bounds(vm->context, pc, size, reader.u16());
-            break;
-        }
-        case REMOTE_EVENT_DIVISION: callbacks->division_by_zero(vm->context, reader.u16()); break;
+        case REMOTE_EVENT_STATE: report(vm, VM_REPORT_EXECUTION_STATE_CHANGED, reader, 2); break;
+        case REMOTE_EVENT_KILLED: report(vm, VM_REPORT_EVENT_EXECUTION_KILLED, reader, 1); break;
+        case REMOTE_EVENT_ARRAY: report(vm, VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS, reader, 3); break;
+        case REMOTE_EVENT_DIVISION: report(vm, VM_REPORT_DIVISION_BY_ZERO, reader, 1); break;
         case REMOTE_EVENT_NODE_ERROR: {
             uint16_t pc = reader.u16();
             std::string text(reader.u8(), '\0');
@@ -91,7 +92,7 @@ uint16_t call(vm_state *vm, uint8_t which, uint16_t argument)
 bool is_harness_table(const vm_native_table *natives)
 {
     return natives != nullptr && natives->count == 12 &&
-           std::strcmp(natives->natives[0]->description, "test.subtract") == 0;
+           std::strcmp(vm_native_name(&natives->natives[0]), "test.subtract") == 0;
 }
 
 } // namespace

@@ -31,12 +31,9 @@ namespace
 using aseba::TargetDescription;
 
 void ignore_emit(void *, uint16_t, const int16_t *, uint16_t) {}
-void ignore_state(void *, uint16_t, uint16_t) {}
-void ignore_pc(void *, uint16_t) {}
-void ignore_array(void *, uint16_t, uint16_t, uint16_t) {}
+void ignore_report(void *, uint16_t, const uint16_t *, uint16_t) {}
 void ignore_error(void *, uint16_t, const char *) {}
-const vm_callbacks quiet = { ignore_emit,  ignore_state, ignore_pc,
-                             ignore_array, ignore_pc,    ignore_error };
+const vm_callbacks quiet = { ignore_emit, ignore_report, ignore_error };
 
 // The verifier's verdict on `bytecode` in a node of `target`'s sizes with
 // `natives`: empty when accepted, else the fault and its place.

@@ -164,10 +164,10 @@ TEST(Verifier, RefusesUnknownInstructionsOperatorsAndNatives)
 
 TEST(Verifier, RefusesANativeThatTakesMoreWordsThanTheVmPasses)
 {
-    static const vm_native greedy = { [](vm_state *, const int16_t *) {},
-                                      VM_MAX_NATIVE_ARGUMENTS + 1,
-                                      "greedy\x1F\x11x" };
-    static const vm_native *const natives[] = { &greedy };
+    static const char description[] = {
+        VM_MAX_NATIVE_ARGUMENTS + 1, 'g', 'r', 'e', 'e', 'd', 'y', '\x1F', '\x11', 'x', '\0'
+    };
+    static const vm_native natives[] = { { [](vm_state *, const int16_t *) {}, description } };
     static const vm_native_table table = { natives, 1, nullptr };
     VmHarness harness(VmSizes(), 1, table);
     std::string pushes;

@@ -62,8 +62,6 @@ void on_emit(void *context, uint16_t event, const int16_t *payload, uint16_t cou
     session.emitted.push_back(text + "]}");
 }
 
-void on_state(void *, uint16_t, uint16_t) {}
-
 void on_killed(void *context, uint16_t pc)
 {
     static_cast<Session *>(context)->add_error("event killed", pc, "");
@@ -87,9 +85,18 @@ void on_node_error(void *context, uint16_t pc, const char *message)
     static_cast<Session *>(context)->add_error(message, pc, "");
 }
 
-const vm_callbacks CALLBACKS = {
-    on_emit, on_state, on_killed, on_array_access, on_division_by_zero, on_node_error
-};
+// The VM's word reports (vm.h), state changes left out.
+void on_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
+{
+    if (type == VM_REPORT_EVENT_EXECUTION_KILLED && count == 1)
+        on_killed(context, words[0]);
+    else if (type == VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS && count == 3)
+        on_array_access(context, words[0], words[1], words[2]);
+    else if (type == VM_REPORT_DIVISION_BY_ZERO && count == 1)
+        on_division_by_zero(context, words[0]);
+}
+
+const vm_callbacks CALLBACKS = { on_emit, on_report, on_node_error };
 
 // Runs the active event for at most `budget` steps; false if it is still active.
 bool run_event(vm_state &vm, unsigned long budget)
@@ -115,18 +122,18 @@ bool execute_program(const CompileResult &compiled,
 {
     // the target's natives, found by name among the host's implementations:
     // the standard ones and the e-puck's (the firmware's own table)
-    std::vector<const vm_native *> natives;
+    std::vector<vm_native> natives;
     for (const auto &function : target.native_functions) {
         const vm_native *found = nullptr;
         for (const vm_native_table *table : { &nat_standard_table, &epuck_native_table })
             for (uint16_t i = 0; i < table->count && found == nullptr; ++i)
                 if (function.name == native_function(*table, i).name)
-                    found = table->natives[i];
+                    found = &table->natives[i];
         if (found == nullptr) {
             error = "native function " + function.name + " has no implementation on the host";
             return false;
         }
-        natives.push_back(found);
+        natives.push_back(*found);
     }
     // Run, not described: no dictionary needed.
     vm_native_table table{ natives.data(), static_cast<uint16_t>(natives.size()), nullptr };

@@ -37,7 +37,7 @@ static std::string native_text(const char *words, const char *text)
 
 NativeFunction native_function(const vm_native_table &table, uint16_t index)
 {
-    const char *description = table.natives[index]->description;
+    const char *description = vm_native_name(&table.natives[index]);
     NativeFunction function;
     function.name = native_text(table.words, description);
     const char *part = vm_native_text_end(description);

@@ -149,9 +149,22 @@ static void on_node_error(void *context, uint16_t pc, const char *text)
     event_bytes(context, text, length);
 }
 
-static const vm_callbacks callbacks = {
-    on_emit, on_state, on_killed, on_array_access, on_division_by_zero, on_node_error
-};
+/* The VM's word reports, each as its remote event. */
+static void on_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
+{
+    (void)count; /* the VM sends each type's own count (vm.h) */
+    switch (type) {
+    case VM_REPORT_EXECUTION_STATE_CHANGED: on_state(context, words[0], words[1]); break;
+    case VM_REPORT_EVENT_EXECUTION_KILLED: on_killed(context, words[0]); break;
+    case VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS:
+        on_array_access(context, words[0], words[1], words[2]);
+        break;
+    case VM_REPORT_DIVISION_BY_ZERO: on_division_by_zero(context, words[0]); break;
+    default: break;
+    }
+}
+
+static const vm_callbacks callbacks = { on_emit, on_report, on_node_error };
 
 static void on_send(void *context, const uint8_t *bytes, uint16_t count, bool frame_complete)
 {

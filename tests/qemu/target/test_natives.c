@@ -75,16 +75,16 @@ static void native_stat(vm_state *vm, const int16_t *arguments)
     *outputs[2] = (int16_t)(sum / size);
 }
 
-/* Described by their names alone (a packed description, vm.h). */
-static const vm_native subtract_native = { native_subtract, 3, "test.subtract" };
-static const vm_native fill_native = { native_fill, 3, "test.fill" };
-static const vm_native fail_native = { native_fail, 0, "test.fail" };
-static const vm_native reach_native = { native_reach, 2, "test.reach" };
-static const vm_native yield_native = { native_yield, 0, "test.yield" };
-static const vm_native stat_native = { native_stat, 5, "test.stat" };
-static const vm_native *const harness_native_list[] = {
-    &subtract_native, &fill_native, &fail_native, &reach_native, &yield_native, &fail_native,
-    &fail_native,     &fail_native, &fail_native, &fail_native,  &fail_native,  &stat_native
+/* Described by their stack words and names alone (a packed description,
+   vm.h). */
+static const char fail_description[] = "\x00test.fail";
+static const vm_native harness_native_list[] = {
+    { native_subtract, "\x03test.subtract" }, { native_fill, "\x03test.fill" },
+    { native_fail, fail_description },        { native_reach, "\x02test.reach" },
+    { native_yield, "\x00test.yield" },       { native_fail, fail_description },
+    { native_fail, fail_description },        { native_fail, fail_description },
+    { native_fail, fail_description },        { native_fail, fail_description },
+    { native_fail, fail_description },        { native_stat, "\x05test.stat" },
 };
 const vm_native_table harness_natives = { harness_native_list, 12, 0 };
 
@@ -120,20 +120,19 @@ static void test_fill(vm_state *vm, const int16_t *arguments)
         dest[i] = *value;
 }
 
-/* Packed descriptions (vm.h): name, 0x1F and the documentation, then each
-   parameter's size + 0x10 and its name. */
-static const vm_native test_sqrt_native = { test_sqrt,
-                                            1,
-                                            "test.sqrt\x1F"
-                                            "integer square root\x11"
-                                            "x" };
-static const vm_native test_fill_native = { test_fill,
-                                            3,
-                                            "test.fill\x1F"
-                                            "fills dest with value\x0F"
-                                            "dest\x11"
-                                            "value" };
-static const vm_native *const tiny_native_list[] = { &test_sqrt_native, &test_fill_native };
+/* Packed descriptions (vm.h): stack words, name, 0x1F and the
+   documentation, then each parameter's size + 0x10 and its name. */
+static const vm_native tiny_native_list[] = {
+    { test_sqrt,
+      "\x01test.sqrt\x1F"
+      "integer square root\x11"
+      "x" },
+    { test_fill,
+      "\x03test.fill\x1F"
+      "fills dest with value\x0F"
+      "dest\x11"
+      "value" },
+};
 static const vm_native_table tiny_natives = { tiny_native_list, 2, 0 };
 
 static const node_named_variable tiny_variables[] = { { "id", 1 },
