@@ -171,6 +171,13 @@ void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycl
         values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
 }
 
+bool world_adc_channels_steady(void *context, uint16_t channel_mask)
+{
+    // In a silent arena the microphones hear the bias at every cycle; the
+    // other inputs change with the world's steps and the emitters.
+    return channel_mask == microphone_channels && state_of(context).world->sound_field().silent();
+}
+
 bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
 {
     RobotState &state = state_of(context);
@@ -441,9 +448,16 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
         auto state = std::make_unique<RobotState>();
         state->world = this;
         state->index = i;
-        state->table = { state.get(),       world_adc_read,          world_pin_read,
-                         world_pin_written, world_i2c_write,         world_i2c_read,
-                         world_camera_byte, world_next_input_change, world_adc_read_channels };
+        state->table = { state.get(),
+                         world_adc_read,
+                         world_pin_read,
+                         world_pin_written,
+                         world_i2c_write,
+                         world_i2c_read,
+                         world_camera_byte,
+                         world_next_input_change,
+                         world_adc_read_channels,
+                         world_adc_channels_steady };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);
