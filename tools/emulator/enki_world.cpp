@@ -269,6 +269,15 @@ bool world_i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, 
     return true;
 }
 
+// std::lround of a level 0..63, without the library call (a row of pixels
+// takes 360 of them): the fraction of a non-negative double is exact, so
+// the comparison rounds halves up as lround does.
+unsigned rounded_level(double level)
+{
+    auto whole = unsigned(level);
+    return level - whole >= 0.5 ? whole + 1 : whole;
+}
+
 uint8_t world_camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 {
     RobotState &state = state_of(context);
@@ -280,9 +289,9 @@ uint8_t world_camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
         state.world->camera_row(state.index, row, pixels);
         for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
             const Color &color = pixels[pixel];
-            unsigned red = unsigned(std::lround(color.red * rgb565_red_levels));
-            unsigned green = unsigned(std::lround(color.green * rgb565_green_levels));
-            unsigned blue = unsigned(std::lround(color.blue * rgb565_blue_levels));
+            unsigned red = rounded_level(color.red * rgb565_red_levels);
+            unsigned green = rounded_level(color.green * rgb565_green_levels);
+            unsigned blue = rounded_level(color.blue * rgb565_blue_levels);
             uint16_t word = uint16_t(red << 11 | green << 5 | blue);
             state.row_bytes[2 * pixel] = uint8_t(word >> 8);
             state.row_bytes[2 * pixel + 1] = uint8_t(word & 0xFF);
