@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <new>
+#include <utility>
 
 namespace aseba::arena
 {
@@ -518,6 +519,11 @@ const host_world *EnkiWorld::world_of(size_t index) const
 EnkiEpuck &EnkiWorld::robot(size_t index)
 {
     return *robots_.at(index);
+}
+
+void EnkiWorld::set_parallel_for(PartitionedWorld::ParallelFor parallel_for)
+{
+    world_->set_parallel_for(std::move(parallel_for));
 }
 
 void EnkiWorld::step()
