@@ -61,6 +61,50 @@ static void scan_finished(void *context, const uint16_t *values, uint8_t count)
     analog->scanning = next;
 }
 
+// How many scans from cycle position `position` on come before position
+// `other` (0 for `other` itself).
+static uint8_t scans_before(uint8_t position, uint8_t other)
+{
+    return (uint8_t)((other + EPUCK_ANALOG_CYCLE - position) % EPUCK_ANALOG_CYCLE);
+}
+
+// A run of scans reading the same values (a simulated board's silent
+// microphones): the microphones' scans at its start, up to the next scan of
+// another source, go to the microphones at once. When the run reaches that
+// scan, the last microphone scan goes through scan_finished, which chooses
+// what comes next; before it, the next scan converts the microphones again.
+static uint16_t scans_finished(void *context, const uint16_t *values, uint8_t count, uint16_t scans)
+{
+    epuck_analog *analog = context;
+    uint8_t first, microphone_scans;
+    uint16_t run;
+
+    if (analog->scanning != EPUCK_ANALOG_MICROPHONES) {
+        scan_finished(context, values, count);
+        return 1;
+    }
+    // The run's first scan finishes at this cycle position; the scans up
+    // to the next position of another source convert the microphones.
+    first = (uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE);
+    microphone_scans = scans_before(first, COUNT_ACCELEROMETER_FINISHED);
+    if (scans_before(first, COUNT_AMBIENT_FINISHED) < microphone_scans)
+        microphone_scans = scans_before(first, COUNT_AMBIENT_FINISHED);
+    if (scans_before(first, COUNT_LIT_FINISHED) < microphone_scans)
+        microphone_scans = scans_before(first, COUNT_LIT_FINISHED);
+    run = scans < microphone_scans ? scans : microphone_scans;
+    // The scans of the run that leave the next one to the microphones.
+    scans = run == microphone_scans ? (uint16_t)(run - 1u) : run;
+    if (scans > 0u) {
+        epuck_microphones_sampled_run(
+          analog->microphones, values, analog->previous == EPUCK_ANALOG_MICROPHONES, scans);
+        analog->previous = EPUCK_ANALOG_MICROPHONES;
+        analog->count = (uint8_t)((analog->count + scans) % EPUCK_ANALOG_CYCLE);
+    }
+    if (scans < run)
+        scan_finished(context, values, count);
+    return run;
+}
+
 bool epuck_analog_start(epuck_analog *analog,
                         hal_board *board,
                         epuck_proximity *proximity,
@@ -76,7 +120,10 @@ bool epuck_analog_start(epuck_analog *analog,
     analog->count = COUNT_LIT_FINISHED;
     analog->scanning = EPUCK_ANALOG_MICROPHONES;
     analog->previous = EPUCK_ANALOG_PROXIMITY_LIT;
-    return epuck_board_adc_scan_start(board, EPUCK_MICROPHONE_CHANNELS, scan_finished, analog);
+    if (!epuck_board_adc_scan_start(board, EPUCK_MICROPHONE_CHANNELS, scan_finished, analog))
+        return false;
+    epuck_board_adc_scan_runs(board, scans_finished);
+    return true;
 }
 
 void epuck_analog_stop(epuck_analog *analog)

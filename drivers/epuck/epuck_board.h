@@ -88,6 +88,23 @@ bool epuck_board_adc_scan_select(hal_board *board, uint16_t channel_mask);
 // Stops scanning; the callback is not called again.
 void epuck_board_adc_scan_stop(hal_board *board);
 
+// Receives `scans` (2 or more) scans in a row that read the same `values`,
+// with nothing else run between them, and takes the first of them, or more:
+// exactly what as many calls of the scan callback would have done. Returns
+// how many it took (1..scans); the board hands over the others afterwards.
+typedef uint16_t (*epuck_adc_scan_run_callback)(void *context,
+                                                const uint16_t *values,
+                                                uint8_t count,
+                                                uint16_t scans);
+
+// Lets the board hand the running scan's stretches of unchanging inputs to
+// `callback` at once (NULL: one scan at a time). A simulated board, whose
+// 16,384 scans a second are much of its work, does so when its world says
+// the inputs hold still (a silent arena's microphones); a chip converts one
+// scan at a time and ignores this. Cleared by epuck_board_adc_scan_start and
+// epuck_board_adc_scan_stop.
+void epuck_board_adc_scan_runs(hal_board *board, epuck_adc_scan_run_callback callback);
+
 // --- I2C master (camera, extensions, §2.4) ------------------------------------------------
 
 // The camera's 8-bit I2C write address (hardware §3.5); reads use it + 1.

@@ -55,26 +55,76 @@ static void record(epuck_microphones *microphones, const uint16_t *values, bool 
     }
 }
 
-void epuck_microphones_sampled(epuck_microphones *microphones,
-                               const uint16_t *values,
-                               bool follows_previous)
+static void widen_window(epuck_microphones *microphones, const uint16_t *values)
 {
     uint8_t i;
 
-    record(microphones, values, follows_previous);
     for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++) {
         if (values[i] < microphones->window_min[i])
             microphones->window_min[i] = values[i];
         if (values[i] > microphones->window_max[i])
             microphones->window_max[i] = values[i];
     }
-    microphones->window_samples++;
-    if (microphones->window_samples < EPUCK_MICROPHONE_WINDOW)
-        return;
+}
+
+static void end_window(epuck_microphones *microphones)
+{
+    uint8_t i;
+
     for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
         microphones->volume[i] =
           (uint16_t)(microphones->window_max[i] - microphones->window_min[i]);
     start_window(microphones);
+}
+
+void epuck_microphones_sampled(epuck_microphones *microphones,
+                               const uint16_t *values,
+                               bool follows_previous)
+{
+    record(microphones, values, follows_previous);
+    widen_window(microphones, values);
+    microphones->window_samples++;
+    if (microphones->window_samples == EPUCK_MICROPHONE_WINDOW)
+        end_window(microphones);
+}
+
+void epuck_microphones_sampled_run(epuck_microphones *microphones,
+                                   const uint16_t *values,
+                                   bool follows_previous,
+                                   uint16_t scans)
+{
+    uint16_t left = scans;
+    uint16_t take;
+
+    while (left > 0) {
+        if (!microphones->recording_now &&
+            (microphones->recording_full || microphones->until_next > 1u)) {
+            // Readings that only count down to the next recording: all of
+            // them while one waits to be taken, else all but the one that
+            // starts the next.
+            take = microphones->recording_full ? left : (uint16_t)(microphones->until_next - 1u);
+            if (take > left)
+                take = left;
+            microphones->until_next =
+              microphones->until_next > take ? (uint16_t)(microphones->until_next - take) : 0u;
+        } else {
+            record(microphones, values, follows_previous);
+            take = 1;
+        }
+        left = (uint16_t)(left - take);
+        follows_previous = true;
+    }
+    // The same readings again leave the window's extremes as they are after
+    // the first; only the count of readings moves.
+    for (left = scans; left > 0; left = (uint16_t)(left - take)) {
+        take = (uint16_t)(EPUCK_MICROPHONE_WINDOW - microphones->window_samples);
+        if (take > left)
+            take = left;
+        widen_window(microphones, values);
+        microphones->window_samples = (uint16_t)(microphones->window_samples + take);
+        if (microphones->window_samples == EPUCK_MICROPHONE_WINDOW)
+            end_window(microphones);
+    }
 }
 
 void epuck_microphones_read(epuck_microphones *microphones, int16_t *volume)

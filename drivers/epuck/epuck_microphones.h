@@ -61,6 +61,14 @@ void epuck_microphones_sampled(epuck_microphones *microphones,
                                const uint16_t *values,
                                bool follows_previous);
 
+// The same as `scans` calls of epuck_microphones_sampled with the same
+// `values`, the first with `follows_previous`, the others following it: a
+// simulated board hands a silent stretch at once (epuck_board.h, scan runs).
+void epuck_microphones_sampled_run(epuck_microphones *microphones,
+                                   const uint16_t *values,
+                                   bool follows_previous,
+                                   uint16_t scans);
+
 // The volumes of the last full window (max − min, 0..4095) into `volume`.
 void epuck_microphones_read(epuck_microphones *microphones, int16_t *volume);
 

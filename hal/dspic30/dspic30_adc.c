@@ -152,6 +152,13 @@ void epuck_board_adc_scan_stop(hal_board *board)
     hal_critical_leave(board, state);
 }
 
+void epuck_board_adc_scan_runs(hal_board *board, epuck_adc_scan_run_callback callback)
+{
+    // The chip interrupts once per scan: every scan goes to the scan callback.
+    (void)board;
+    (void)callback;
+}
+
 void dspic30_on_adc(hal_board *board)
 {
     uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];

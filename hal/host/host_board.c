@@ -39,8 +39,10 @@ uint64_t host_board_cycles(const hal_board *board)
     return board->cycles;
 }
 
-// Defined in host_peripherals.c: runs one ADC scan.
-void host_board_run_adc_scan(hal_board *board);
+// Defined in host_peripherals.c: runs the ADC scan due now, and with it the
+// later scans due up to `until` that the firmware takes at once (the
+// board's time is then the last one's).
+void host_board_run_adc_scans(hal_board *board, uint64_t until);
 
 static bool any_input_watched(const hal_board *board)
 {
@@ -111,7 +113,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         // peripheral ends the row, so that the next event is chosen again.
         while (board->adc_scan_mask != 0 && board->adc_next_due <= scans_until) {
             board->cycles = board->adc_next_due;
-            host_board_run_adc_scan(board);
+            host_board_run_adc_scans(board, scans_until);
             if (board->configuration_changes != changes)
                 break;
         }
@@ -279,6 +281,7 @@ void host_board_reset(hal_board *board)
     // chip's to lose.
     memset(board->timers, 0, sizeof board->timers);
     board->adc_scan_callback = 0;
+    board->adc_scan_run_callback = 0;
     board->adc_scan_context = 0;
     board->adc_scan_mask = 0;
     memset(board->outputs, 0, sizeof board->outputs);

@@ -49,6 +49,7 @@ struct hal_board {
     host_periodic timers[EPUCK_TIMER_COUNT];
     // The ADC scan: a periodic event whose callback gets the values.
     epuck_adc_scan_callback adc_scan_callback;
+    epuck_adc_scan_run_callback adc_scan_run_callback; // NULL: one scan at a time
     void *adc_scan_context;
     uint16_t adc_scan_mask;
     uint8_t adc_scan_channels; // in the mask

@@ -35,6 +35,7 @@ bool epuck_board_adc_scan_start(hal_board *board,
     if (!scan_mask_supported(channel_mask))
         return false;
     board->adc_scan_callback = callback;
+    board->adc_scan_run_callback = 0;
     board->adc_scan_context = context;
     board->adc_scan_mask = channel_mask;
     board->adc_scan_channels = scan_channel_count(channel_mask);
@@ -55,19 +56,23 @@ void epuck_board_adc_scan_stop(hal_board *board)
 {
     board->adc_scan_mask = 0;
     board->adc_scan_callback = 0;
+    board->adc_scan_run_callback = 0;
 }
 
-void host_board_run_adc_scan(hal_board *board);
+void epuck_board_adc_scan_runs(hal_board *board, epuck_adc_scan_run_callback callback)
+{
+    board->adc_scan_run_callback = callback;
+}
 
-void host_board_run_adc_scan(hal_board *board)
+// The values of the scanned channels at the board's time, into `values`;
+// returns how many.
+static uint8_t read_scan(hal_board *board, uint16_t *values)
 {
     const host_world *world = board->world;
-    uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
     uint8_t count = 0;
     uint8_t channel;
     uint16_t mask;
 
-    board->adc_next_due += SCAN_PERIOD_CYCLES;
     if (world->adc_read_channels) {
         world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
         count = board->adc_scan_channels;
@@ -78,6 +83,31 @@ void host_board_run_adc_scan(hal_board *board)
             values[count++] = world->adc_read(world->context, channel, board->cycles);
         }
     }
+    return count;
+}
+
+void host_board_run_adc_scans(hal_board *board, uint64_t until);
+
+void host_board_run_adc_scans(hal_board *board, uint64_t until)
+{
+    const host_world *world = board->world;
+    uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
+    uint8_t count = read_scan(board, values);
+    uint64_t due = (until - board->adc_next_due) / SCAN_PERIOD_CYCLES + 1u;
+    uint16_t taken;
+
+    if (due > 1u && board->adc_scan_run_callback && world->adc_channels_steady &&
+        world->adc_channels_steady(world->context, board->adc_scan_mask)) {
+        // The scans due up to `until` all read what this one reads.
+        taken = board->adc_scan_run_callback(
+          board->adc_scan_context, values, count, (uint16_t)(due < UINT16_MAX ? due : UINT16_MAX));
+        if (taken < 1u)
+            taken = 1u;
+        board->cycles = board->adc_next_due + (uint64_t)(taken - 1u) * SCAN_PERIOD_CYCLES;
+        board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
+        return;
+    }
+    board->adc_next_due += SCAN_PERIOD_CYCLES;
     if (board->adc_scan_callback)
         board->adc_scan_callback(board->adc_scan_context, values, count);
 }

@@ -71,6 +71,13 @@ static uint8_t flat_camera_byte(void *context, uint16_t row, uint16_t index, uin
     return 0;
 }
 
+static bool flat_adc_channels_steady(void *context, uint16_t channel_mask)
+{
+    (void)context;
+    (void)channel_mask;
+    return true; // every input always reads the same
+}
+
 static const host_world flat_world = {
     0,
     flat_adc_read,
@@ -81,6 +88,7 @@ static const host_world flat_world = {
     flat_camera_byte,
     0,
     0,
+    flat_adc_channels_steady,
 };
 
 const host_world *host_world_flat(void)

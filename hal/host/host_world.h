@@ -45,6 +45,12 @@ typedef struct host_world {
                               uint16_t channel_mask,
                               uint64_t cycle,
                               uint16_t *values);
+    // Whether the analog inputs of `channel_mask` convert to the same values
+    // at every cycle until the board's current advance ends, whatever the
+    // firmware writes to the pins meanwhile (a silent arena's microphones),
+    // so that the board hands a run of scans to the firmware at once
+    // (epuck_board_adc_scan_runs). NULL: never.
+    bool (*adc_channels_steady)(void *context, uint16_t channel_mask);
 } host_world;
 
 #define HOST_NO_INPUT_CHANGE UINT64_MAX

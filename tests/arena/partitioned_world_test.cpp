@@ -1,7 +1,7 @@
 // The arena's grid-stepped Enki world against Enki's own step: the same
 // robots, obstacles and wheel commands give the same run, bit for bit, in a
 // crowd where robots keep bumping into each other, the obstacles and the
-// walls.
+// walls; also with its sensing pass shared out over threads.
 
 #include <gtest/gtest.h>
 
@@ -14,9 +14,11 @@
 
 #include "tools/emulator/enki_world.hpp"
 #include "tools/emulator/partitioned_world.hpp"
+#include "tools/emulator/worker_pool.hpp"
 
 using aseba::arena::EnkiEpuck;
 using aseba::arena::PartitionedWorld;
+using aseba::arena::WorkerPool;
 
 namespace
 {
@@ -30,6 +32,7 @@ constexpr int steps = 600;
 struct RobotRecord {
     double x, y, angle;
     double infrared[EnkiEpuck::ir_count];
+    double camera; // a sum over the camera's pixels, when it is stepped
 };
 
 struct CrowdRun {
@@ -39,7 +42,8 @@ struct CrowdRun {
 
 // Runs the crowd in `world` (fresh, square, side x side); robots and
 // obstacles live in one block each, in order, as the arena keeps them.
-CrowdRun run_crowd(Enki::World &world)
+// With `camera`, Enki steps the robots' cameras too.
+CrowdRun run_crowd(Enki::World &world, bool camera = false)
 {
     world.takeObjectOwnership = false;
     world.setRandomSeed(11);
@@ -50,7 +54,7 @@ CrowdRun run_crowd(Enki::World &world)
     Enki::PhysicalObject *obstacles = obstacle_allocator.allocate(2);
     const size_t columns = 8;
     for (size_t i = 0; i < robot_count; i++) {
-        EnkiEpuck *robot = new (robots + i) EnkiEpuck(0.05, 0.5, false);
+        EnkiEpuck *robot = new (robots + i) EnkiEpuck(0.05, 0.5, camera);
         robot->pos =
           Enki::Point(30 + spacing * double(i % columns), 30 + spacing * double(i / columns));
         robot->angle = double(i * 37 % 360) * M_PI / 180;
@@ -80,9 +84,13 @@ CrowdRun run_crowd(Enki::World &world)
             run.collisions += robots[i].collisions;
     }
     for (size_t i = 0; i < robot_count; i++) {
-        RobotRecord record{ robots[i].pos.x, robots[i].pos.y, robots[i].angle, {} };
+        RobotRecord record{ robots[i].pos.x, robots[i].pos.y, robots[i].angle, {}, 0 };
         for (unsigned sensor = 0; sensor < EnkiEpuck::ir_count; sensor++)
             record.infrared[sensor] = robots[i].infrared[sensor].getValue();
+        for (size_t pixel = 0; pixel < robots[i].camera.image.size(); pixel++) {
+            const Enki::Color &color = robots[i].camera.image[pixel];
+            record.camera += double(pixel + 1) * (color.r() + 2 * color.g() + 3 * color.b());
+        }
         run.robots.push_back(record);
     }
     world.objects.clear();
@@ -113,4 +121,42 @@ TEST(PartitionedWorld, StepsAsEnkiDoesBitForBit)
           << "robot " << i << " at " << got.robots[i].x << ", " << got.robots[i].y << ", Enki's at "
           << expected.robots[i].x << ", " << expected.robots[i].y;
     EXPECT_EQ(partitioned.margin_overruns(), 0u);
+}
+
+namespace
+{
+
+// Compares two crowd runs bit for bit.
+void expect_same_crowd(const CrowdRun &got, const CrowdRun &expected)
+{
+    EXPECT_EQ(got.collisions, expected.collisions);
+    ASSERT_EQ(got.robots.size(), expected.robots.size());
+    for (size_t i = 0; i < got.robots.size(); i++)
+        EXPECT_EQ(std::memcmp(&got.robots[i], &expected.robots[i], sizeof(RobotRecord)), 0)
+          << "robot " << i;
+}
+
+} // namespace
+
+// The sensing pass on three threads, with and without the cameras: the
+// same run as Enki's own step.
+TEST(PartitionedWorld, StepsAsEnkiDoesOnSeveralThreads)
+{
+    for (bool camera : { false, true }) {
+        SCOPED_TRACE(camera ? "with cameras" : "without cameras");
+        Enki::World enki(side, side, Enki::Color::gray);
+        CrowdRun expected = run_crowd(enki, camera);
+        WorkerPool workers(3);
+        PartitionedWorld partitioned(side, side, Enki::Color::gray);
+        partitioned.set_parallel_for(
+          [&workers](size_t count, const std::function<void(size_t, size_t)> &work) {
+              workers.run(count, work);
+          });
+        CrowdRun got = run_crowd(partitioned, camera);
+        expect_same_crowd(got, expected);
+        double pixels = 0;
+        for (const RobotRecord &robot : got.robots)
+            pixels += robot.camera;
+        EXPECT_EQ(pixels > 0, camera) << "the cameras saw something only when stepped";
+    }
 }

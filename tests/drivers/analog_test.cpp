@@ -259,3 +259,161 @@ TEST_F(Analog, RecordingsAreConsecutiveScansLessTheirMean)
 
 } // namespace
 } // namespace drivers_test
+
+namespace drivers_test
+{
+namespace
+{
+
+// Whether two microphone drivers hold the same state.
+void expect_same_microphones(const epuck_microphones &a, const epuck_microphones &b)
+{
+    for (unsigned i = 0; i < EPUCK_MICROPHONE_COUNT; i++) {
+        EXPECT_EQ(a.window_min[i], b.window_min[i]) << i;
+        EXPECT_EQ(a.window_max[i], b.window_max[i]) << i;
+        EXPECT_EQ(a.volume[i], b.volume[i]) << i;
+        for (unsigned n = 0; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++)
+            ASSERT_EQ(a.recording[i][n], b.recording[i][n]) << i << ", " << n;
+    }
+    EXPECT_EQ(a.window_samples, b.window_samples);
+    EXPECT_EQ(a.recorded, b.recorded);
+    EXPECT_EQ(a.until_next, b.until_next);
+    EXPECT_EQ(a.recording_now, b.recording_now);
+    EXPECT_EQ(a.recording_full, b.recording_full);
+}
+
+// A run of n scans of the same values does what n scans one at a time do,
+// across window ends, recordings started, filled, broken by another
+// channel's scan, and waiting to be taken.
+TEST(MicrophoneRuns, ARunIsThatManyScansOfTheSameValues)
+{
+    auto board = std::make_unique<hal_board>();
+    host_board_init(board.get(), nullptr, nullptr);
+    epuck_microphones by_run{}, one_by_one{};
+    epuck_microphones_init(&by_run, board.get());
+    epuck_microphones_init(&one_by_one, board.get());
+    std::array<std::array<int16_t, EPUCK_MICROPHONE_RECORD_SAMPLES>, 3> a{}, b{};
+    int16_t *const into_a[3] = { a[0].data(), a[1].data(), a[2].data() };
+    int16_t *const into_b[3] = { b[0].data(), b[1].data(), b[2].data() };
+    uint32_t random = 12345;
+    auto next = [&random](uint32_t below) {
+        random = random * 1103515245u + 12345u;
+        return (random >> 8) % below;
+    };
+    int runs = 0;
+    for (int action = 0; action < 20000; action++) {
+        uint16_t values[3] = { uint16_t(next(4096)), uint16_t(next(4096)), uint16_t(next(4096)) };
+        bool follows = next(8) != 0;
+        switch (next(4)) {
+        case 0:
+            epuck_microphones_sampled(&by_run, values, follows);
+            epuck_microphones_sampled(&one_by_one, values, follows);
+            break;
+        case 1: {
+            EXPECT_EQ(epuck_microphones_take_recording(&by_run, into_a),
+                      epuck_microphones_take_recording(&one_by_one, into_b));
+            EXPECT_EQ(a, b);
+            break;
+        }
+        default: {
+            uint16_t scans = uint16_t(1 + next(next(2) ? 40 : 1500));
+            epuck_microphones_sampled_run(&by_run, values, follows, scans);
+            for (uint16_t n = 0; n < scans; n++)
+                epuck_microphones_sampled(&one_by_one, values, n == 0 ? follows : true);
+            runs++;
+            break;
+        }
+        }
+        expect_same_microphones(by_run, one_by_one);
+        if (::testing::Test::HasFailure())
+            FAIL() << "after action " << action;
+    }
+    EXPECT_GT(runs, 5000);
+}
+
+// The analog drivers on a board that hands the silent microphones' scans
+// over in runs (host_world.h) end every millisecond as on a board that hands
+// over one scan at a time: volumes, recordings, proximity and accelerometer
+// sets, the sequencer's place in its cycle; the microphones' levels change
+// now and then between the board's advances.
+TEST(AnalogRuns, RunsOfSteadyScansLeaveTheDriversAsSingleScansDo)
+{
+    struct Rig {
+        std::unique_ptr<hal_board> board = std::make_unique<hal_board>();
+        ModelledWorld world;
+        epuck_proximity proximity{};
+        epuck_accelerometer accelerometer{};
+        epuck_microphones microphones{};
+        epuck_analog analog{};
+
+        explicit Rig(bool runs)
+        {
+            host_board_init(board.get(), nullptr, nullptr);
+            world.ambient.fill(3000);
+            world.reflection.fill(700);
+            world.channel.fill(2048);
+            world.steady_microphones = runs;
+            world.attach(board.get());
+            epuck_proximity_init(&proximity, board.get());
+            epuck_accelerometer_init(&accelerometer, board.get());
+            epuck_microphones_init(&microphones, board.get());
+            EXPECT_TRUE(
+              epuck_analog_start(&analog, board.get(), &proximity, &accelerometer, &microphones));
+        }
+        size_t microphone_conversions() const
+        {
+            return size_t(std::count_if(
+              world.conversions.begin(), world.conversions.end(), [](const Conversion &c) {
+                  return c.channel == EPUCK_ADC_MICROPHONE_0;
+              }));
+        }
+    };
+    Rig by_runs(true), one_by_one(false);
+    std::array<std::array<int16_t, EPUCK_MICROPHONE_RECORD_SAMPLES>, 3> a{}, b{};
+    int16_t *const into_a[3] = { a[0].data(), a[1].data(), a[2].data() };
+    int16_t *const into_b[3] = { b[0].data(), b[1].data(), b[2].data() };
+    int recordings = 0, sets = 0;
+    bool heard = false;
+    for (int ms = 0; ms < 2000; ms++) {
+        if (ms % 70 == 0)
+            for (unsigned i = 0; i < 3; i++)
+                by_runs.world.channel[EPUCK_ADC_MICROPHONE_0 + i] =
+                  one_by_one.world.channel[EPUCK_ADC_MICROPHONE_0 + i] =
+                    uint16_t(2048 + (ms * 7 + int(i) * 300) % 900);
+        // Advances of uneven lengths, some shorter than a scan.
+        uint64_t cycles = uint64_t(FCY / 1000) * (1 + ms % 3) / 2 + uint64_t(ms % 5);
+        host_board_advance(by_runs.board.get(), cycles);
+        host_board_advance(one_by_one.board.get(), cycles);
+        if (ms % 40 == 0) {
+            bool taken = epuck_microphones_take_recording(&by_runs.microphones, into_a);
+            ASSERT_EQ(taken, epuck_microphones_take_recording(&one_by_one.microphones, into_b));
+            EXPECT_EQ(a, b);
+            recordings += taken;
+        }
+        std::array<int16_t, 8> prox_a{}, ambient_a{}, prox_b{}, ambient_b{};
+        bool set = epuck_proximity_take(&by_runs.proximity, prox_a.data(), ambient_a.data());
+        ASSERT_EQ(set,
+                  epuck_proximity_take(&one_by_one.proximity, prox_b.data(), ambient_b.data()));
+        EXPECT_EQ(prox_a, prox_b);
+        EXPECT_EQ(ambient_a, ambient_b);
+        sets += set;
+        expect_same_microphones(by_runs.microphones, one_by_one.microphones);
+        std::array<int16_t, 3> volume{};
+        epuck_microphones_read(&by_runs.microphones, volume.data());
+        heard |= volume[0] + volume[1] + volume[2] > 0;
+        ASSERT_EQ(by_runs.analog.count, one_by_one.analog.count) << ms;
+        ASSERT_EQ(by_runs.analog.scanning, one_by_one.analog.scanning) << ms;
+        ASSERT_EQ(by_runs.analog.previous, one_by_one.analog.previous) << ms;
+        ASSERT_EQ(host_board_cycles(by_runs.board.get()),
+                  host_board_cycles(one_by_one.board.get()));
+    }
+    EXPECT_EQ(by_runs.world.changes.size(), one_by_one.world.changes.size());
+    EXPECT_GT(recordings, 10);
+    EXPECT_GT(sets, 50);
+    EXPECT_TRUE(heard) << "no window saw the levels change";
+    // The runs did save conversions: most microphone scans came in runs.
+    EXPECT_LT(by_runs.microphone_conversions() * 3, one_by_one.microphone_conversions());
+}
+
+} // namespace
+} // namespace drivers_test

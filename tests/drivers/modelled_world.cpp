@@ -73,6 +73,15 @@ uint64_t input_change_after(void *context, uint64_t after_cycle)
     return world.next_input_change ? world.next_input_change(after_cycle) : HOST_NO_INPUT_CHANGE;
 }
 
+bool channels_steady(void *context, uint16_t channel_mask)
+{
+    ModelledWorld &world = world_of(context);
+    // The values of `channel` hold still (those of `signal` do not); only
+    // the microphones are offered: the proximity channels follow the
+    // emitters.
+    return world.steady_microphones && !world.signal && channel_mask == EPUCK_MICROPHONE_CHANNELS;
+}
+
 uint8_t camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 {
     ModelledWorld &world = world_of(context);
@@ -86,7 +95,7 @@ uint8_t camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 ModelledWorld::ModelledWorld()
 {
     table = { this,     adc_read,    pin_read,           pin_written, i2c_write,
-              i2c_read, camera_byte, input_change_after, nullptr };
+              i2c_read, camera_byte, input_change_after, nullptr,     channels_steady };
     input[EPUCK_PIN_REMOTE] = true; // idles high
     input[EPUCK_PIN_BATTERY_LOW] = true;
 }

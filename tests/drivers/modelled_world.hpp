@@ -14,6 +14,7 @@
 #include <vector>
 
 extern "C" {
+#include "drivers/epuck/epuck_microphones.h"
 #include "hal/host/host_board.h"
 }
 
@@ -43,6 +44,10 @@ struct ModelledWorld {
     // Other channels (microphones, accelerometer), unless `signal` is set.
     std::array<uint16_t, EPUCK_ADC_CHANNEL_COUNT> channel{};
     std::function<uint16_t(uint8_t channel, uint64_t cycle)> signal;
+    // Whether the world tells the board that the microphones hold still
+    // without `signal` (host_world.h: the board then hands runs of scans to
+    // the firmware at once); their conversions are then recorded once a run.
+    bool steady_microphones = false;
     // Input pins, unless `input_signal` is set; when set,
     // `next_input_change` says when they may change next (host_world.h).
     std::array<bool, EPUCK_PIN_COUNT> input{};

@@ -37,6 +37,10 @@ ArenaSimulation::ArenaSimulation(const Arena &arena,
   , workers_(threads)
   , run_robots_([this](size_t begin, size_t end) { run_robots(begin, end); })
 {
+    // Enki's sensing pass on the firmware's threads, which wait meanwhile.
+    world_.set_parallel_for([this](size_t count, const std::function<void(size_t, size_t)> &work) {
+        workers_.run(count, work);
+    });
     for (size_t i = 0; i < arena.robots.size(); i++) {
         auto robot = std::make_unique<host_robot>();
         uint16_t node_id = arena.robots[i].node_id;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <new>
+#include <utility>
 
 namespace aseba::arena
 {
@@ -171,6 +172,13 @@ void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycl
         values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
 }
 
+bool world_adc_channels_steady(void *context, uint16_t channel_mask)
+{
+    // In a silent arena the microphones hear the bias at every cycle; the
+    // other inputs change with the world's steps and the emitters.
+    return channel_mask == microphone_channels && state_of(context).world->sound_field().silent();
+}
+
 bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
 {
     RobotState &state = state_of(context);
@@ -262,6 +270,15 @@ bool world_i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, 
     return true;
 }
 
+// std::lround of a level 0..63, without the library call (a row of pixels
+// takes 360 of them): the fraction of a non-negative double is exact, so
+// the comparison rounds halves up as lround does.
+unsigned rounded_level(double level)
+{
+    auto whole = unsigned(level);
+    return level - whole >= 0.5 ? whole + 1 : whole;
+}
+
 uint8_t world_camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 {
     RobotState &state = state_of(context);
@@ -273,9 +290,9 @@ uint8_t world_camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
         state.world->camera_row(state.index, row, pixels);
         for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
             const Color &color = pixels[pixel];
-            unsigned red = unsigned(std::lround(color.red * rgb565_red_levels));
-            unsigned green = unsigned(std::lround(color.green * rgb565_green_levels));
-            unsigned blue = unsigned(std::lround(color.blue * rgb565_blue_levels));
+            unsigned red = rounded_level(color.red * rgb565_red_levels);
+            unsigned green = rounded_level(color.green * rgb565_green_levels);
+            unsigned blue = rounded_level(color.blue * rgb565_blue_levels);
             uint16_t word = uint16_t(red << 11 | green << 5 | blue);
             state.row_bytes[2 * pixel] = uint8_t(word >> 8);
             state.row_bytes[2 * pixel + 1] = uint8_t(word & 0xFF);
@@ -441,9 +458,16 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
         auto state = std::make_unique<RobotState>();
         state->world = this;
         state->index = i;
-        state->table = { state.get(),       world_adc_read,          world_pin_read,
-                         world_pin_written, world_i2c_write,         world_i2c_read,
-                         world_camera_byte, world_next_input_change, world_adc_read_channels };
+        state->table = { state.get(),
+                         world_adc_read,
+                         world_pin_read,
+                         world_pin_written,
+                         world_i2c_write,
+                         world_i2c_read,
+                         world_camera_byte,
+                         world_next_input_change,
+                         world_adc_read_channels,
+                         world_adc_channels_steady };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);
@@ -495,6 +519,11 @@ const host_world *EnkiWorld::world_of(size_t index) const
 EnkiEpuck &EnkiWorld::robot(size_t index)
 {
     return *robots_.at(index);
+}
+
+void EnkiWorld::set_parallel_for(PartitionedWorld::ParallelFor parallel_for)
+{
+    world_->set_parallel_for(std::move(parallel_for));
 }
 
 void EnkiWorld::step()

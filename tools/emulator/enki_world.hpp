@@ -133,6 +133,10 @@ class EnkiWorld
     // areas.
     void step();
 
+    // Lets a step share out the robots' sensing (the most of Enki's step)
+    // through `parallel_for`; a step gives the same result either way.
+    void set_parallel_for(PartitionedWorld::ParallelFor parallel_for);
+
     // Steps done since the start.
     uint64_t steps() const
     {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <typeinfo>
+#include <utility>
 
 namespace aseba::arena
 {
@@ -96,8 +97,8 @@ void PartitionedWorld::take_objects()
     }
     // Cells about as wide as the longest reach: a query looks at a few.
     cell_size_ = std::max({ longest_range, 2 * collision_margin, 1.0 });
-    last_seen_.assign(objects_.size(), 0);
-    visit_ = 0;
+    query_.last_seen.assign(objects_.size(), 0);
+    query_.visit = 0;
 }
 
 void PartitionedWorld::build_grid()
@@ -137,8 +138,9 @@ void PartitionedWorld::build_grid()
     }
 }
 
-void PartitionedWorld::objects_near(size_t index, double reach, std::vector<uint32_t> &found)
+void PartitionedWorld::objects_near(size_t index, double reach, Query &query) const
 {
+    std::vector<uint32_t> &found = query.found;
     found.clear();
     const Enki::PhysicalObject *object = objects_[index];
     double around = object->getRadius() + reach;
@@ -146,18 +148,18 @@ void PartitionedWorld::objects_near(size_t index, double reach, std::vector<uint
     long x1 = std::clamp(long(std::floor((object->pos.x + around) / cell_size_)), 0L, columns_ - 1);
     long y0 = std::clamp(long(std::floor((object->pos.y - around) / cell_size_)), 0L, rows_ - 1);
     long y1 = std::clamp(long(std::floor((object->pos.y + around) / cell_size_)), 0L, rows_ - 1);
-    if (++visit_ == 0) {
-        std::fill(last_seen_.begin(), last_seen_.end(), 0);
-        visit_ = 1;
+    if (query.last_seen.size() != objects_.size() || ++query.visit == 0) {
+        query.last_seen.assign(objects_.size(), 0);
+        query.visit = 1;
     }
     for (long y = y0; y <= y1; y++)
         for (long x = x0; x <= x1; x++) {
             size_t cell = size_t(y * columns_ + x);
             for (uint32_t k = cell_starts_[cell]; k < cell_starts_[cell + 1]; k++) {
                 uint32_t other = cell_objects_[k];
-                if (other == index || last_seen_[other] == visit_)
+                if (other == index || query.last_seen[other] == query.visit)
                     continue;
-                last_seen_[other] = visit_;
+                query.last_seen[other] = query.visit;
                 double within = around + objects_[other]->getRadius();
                 if ((objects_[other]->pos - object->pos).norm2() <= within * within)
                     found.push_back(other);
@@ -171,8 +173,8 @@ void PartitionedWorld::collide_nearby_pairs()
     build_grid();
     std::vector<double> moved(objects_.size(), 0);
     for (size_t i = 0; i < objects_.size(); i++) {
-        objects_near(i, collision_margin, found_);
-        for (uint32_t j : found_) {
+        objects_near(i, collision_margin, query_);
+        for (uint32_t j : query_.found) {
             if (j <= i)
                 continue;
             Enki::PhysicalObject *first = objects_[i], *second = objects_[j];
@@ -186,12 +188,17 @@ void PartitionedWorld::collide_nearby_pairs()
         margin_overruns_++;
 }
 
-void PartitionedWorld::sense_nearby_objects(double dt)
+void PartitionedWorld::set_parallel_for(ParallelFor parallel_for)
 {
-    build_grid();
-    for (size_t i = 0; i < objects_.size(); i++) {
+    parallel_for_ = std::move(parallel_for);
+}
+
+void PartitionedWorld::sense_objects(double dt, size_t begin, size_t end, Query &query)
+{
+    for (size_t i = begin; i < end; i++) {
         Enki::PhysicalObject *object = objects_[i];
         double range = sensing_ranges_[i];
+        (object->*ObjectHooks::init_local)(dt, this);
         if (range == 0)
             continue;
         if (range < 0) {
@@ -200,10 +207,27 @@ void PartitionedWorld::sense_nearby_objects(double dt)
                     (object->*ObjectHooks::with_object)(dt, this, objects_[j]);
             continue;
         }
-        objects_near(i, range, found_);
-        for (uint32_t j : found_)
+        objects_near(i, range, query);
+        for (uint32_t j : query.found)
             (object->*ObjectHooks::with_object)(dt, this, objects_[j]);
     }
+    if (wallsType != WALLS_NONE)
+        for (size_t i = begin; i < end; i++)
+            (objects_[i]->*ObjectHooks::with_walls)(dt, this);
+}
+
+void PartitionedWorld::sense_nearby_objects(double dt)
+{
+    build_grid();
+    if (!parallel_for_) {
+        sense_objects(dt, 0, objects_.size(), query_);
+        return;
+    }
+    parallel_for_(objects_.size(), [this, dt](size_t begin, size_t end) {
+        // A query of its own: pieces run at once on different threads.
+        Query query;
+        sense_objects(dt, begin, end, query);
+    });
 }
 
 void PartitionedWorld::step(double dt, unsigned physics_oversampling)
@@ -222,14 +246,15 @@ void PartitionedWorld::step(double dt, unsigned physics_oversampling)
             (object->*pointer_to(FinalizePhysics{}))(physics_dt);
         }
     }
-    for (Enki::PhysicalObject *object : objects_) {
-        (object->*ObjectHooks::init_local)(dt, this);
+    // Enki starts an object's global interactions right after its local
+    // ones; the two are apart (an e-puck has no global one), so the global
+    // ones start first here, and the local ones with the sensing pass.
+    for (Enki::PhysicalObject *object : objects_)
         (object->*ObjectHooks::init_global)(dt, this);
-    }
     sense_nearby_objects(dt);
+    // The noise of the sensors and wheels draws from shared generators: one
+    // object after the other, in Enki's order.
     for (Enki::PhysicalObject *object : objects_) {
-        if (wallsType != WALLS_NONE)
-            (object->*ObjectHooks::with_walls)(dt, this);
         (object->*ObjectHooks::global)(dt, this);
         (object->*ObjectHooks::finalize_local)(dt, this);
         (object->*ObjectHooks::finalize_global)(dt, this);

@@ -14,10 +14,21 @@
 // margin during the pass, which keeps every skipped pair out of reach, and
 // counts the passes where that did not hold (never seen: an object moves by
 // the depth of its contacts, a fraction of a millimetre a step).
+//
+// The sensing pass may run on several threads (set_parallel_for): the
+// calls that start an object's sensors, doLocalInteractions(a, b) and the
+// walls' pass write only a's own sensors (Enki's IR sensors and camera keep
+// their rays and pixels in themselves and draw no random number there), so
+// each object's calls, made in Enki's order on whichever thread, give the
+// same sensors whatever the thread count. What draws noise from Enki's
+// shared generators (the sensors' finalize, the wheels' controlStep) stays
+// on the calling thread, in Enki's order.
 
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include <enki/PhysicalEngine.h>
@@ -31,8 +42,17 @@ class PartitionedWorld : public Enki::World
     // A square arena of `width` x `height` cm with walls of `wall_color`.
     PartitionedWorld(double width, double height, const Enki::Color &wall_color);
 
+    // Calls work(begin, end) on pieces covering 0..count, possibly on
+    // several threads at once, and returns when every piece is done.
+    using ParallelFor =
+      std::function<void(size_t count, const std::function<void(size_t begin, size_t end)> &work)>;
+
     // Enki's World::step, with the pair loops over nearby pairs only.
     void step(double dt, unsigned physics_oversampling = 1) override;
+
+    // Lets the sensing pass share its objects out through `parallel_for`
+    // (by default it runs them in order on the calling thread).
+    void set_parallel_for(ParallelFor parallel_for);
 
     // Collision passes in which an object moved more than the margin allows,
     // so that the run may differ from Enki's all-pairs step (0 expected).
@@ -42,16 +62,27 @@ class PartitionedWorld : public Enki::World
     }
 
   private:
+    // What a neighbour query needs besides the grid, one per thread that
+    // queries: the objects found, and which objects the query has met.
+    struct Query {
+        std::vector<uint32_t> found;
+        std::vector<uint32_t> last_seen;
+        uint32_t visit = 0;
+    };
+
     // The objects in Enki's order, each with how far its sensors reach (0:
     // none; negative: unknown, so it meets every object).
     void take_objects();
     // Buckets the objects' bounding circles into square cells.
     void build_grid();
     // The objects (indices, ascending) whose bounding circles come within
-    // `reach` of the circle of object `index`.
-    void objects_near(size_t index, double reach, std::vector<uint32_t> &found);
+    // `reach` of the circle of object `index`, into `query.found`.
+    void objects_near(size_t index, double reach, Query &query) const;
     void collide_nearby_pairs();
     void sense_nearby_objects(double dt);
+    // The sensing pass of objects begin..end: each object's sensors start
+    // and meet the nearby objects, then the walls.
+    void sense_objects(double dt, size_t begin, size_t end, Query &query);
 
     std::vector<Enki::PhysicalObject *> objects_;
     std::vector<double> sensing_ranges_;
@@ -63,9 +94,8 @@ class PartitionedWorld : public Enki::World
     std::vector<uint32_t> cell_starts_;
     std::vector<uint32_t> cell_objects_;
     std::vector<uint32_t> cell_fill_; // where the next object of each cell goes
-    std::vector<uint32_t> found_;
-    std::vector<uint32_t> last_seen_;
-    uint32_t visit_ = 0;
+    Query query_;                     // the calling thread's
+    ParallelFor parallel_for_;
     uint64_t margin_overruns_ = 0;
 };
 
