@@ -39,7 +39,8 @@ constexpr size_t BOOTLOADER_DATA_CHUNK = 4;
 constexpr uint16_t FIRST_SYSTEM_TYPE = NODE_FIRST_SYSTEM_TYPE; // below: user events
 constexpr uint16_t PROTOCOL_VERSION = NODE_PROTOCOL_VERSION;
 constexpr uint16_t MIN_PROTOCOL_VERSION = 4; // oldest node hosts accept (§1)
-constexpr size_t MAX_EVENT_WORDS = MAX_PAYLOAD_SIZE / 2;
+using aseba::MAX_EVENT_WORDS;                // the compiler's, which is the payload's:
+static_assert(MAX_EVENT_WORDS == MAX_PAYLOAD_SIZE / 2);
 constexpr size_t MAX_VARIABLES_WORDS = NODE_MAX_VARIABLES_WORDS; // one VARIABLES answer
 constexpr size_t MAX_BYTECODE_CHUNK_WORDS = 256;                 // one SET_BYTECODE
 constexpr size_t MAX_SET_VARIABLES_WORDS = 256;                  // one SET_VARIABLES
