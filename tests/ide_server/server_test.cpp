@@ -213,6 +213,18 @@ bool await(ide_test::WebSocketClient &client, const Json &expected, std::string 
     return await(page, expected, seen);
 }
 
+// Whether the reply to request `request_id` says ok (false: no reply).
+bool answered_ok(Page &page, uint64_t request_id)
+{
+    for (;;) {
+        std::optional<Json> reply = page.next(EXPECT_LIMIT);
+        if (!reply)
+            return false;
+        if (reply->value("id", uint64_t(0)) == request_id)
+            return reply->value("ok", false);
+    }
+}
+
 // Waits until robots 1..count of the first target can take a program.
 void await_robots(ide_test::WebSocketClient &client, Page &page, unsigned count)
 {
@@ -228,11 +240,7 @@ void await_robots(ide_test::WebSocketClient &client, Page &page, unsigned count)
               { "robot", "0:" + std::to_string(id) },
               { "source",
                 "" } }.dump());
-            std::optional<Json> reply;
-            while ((reply = page.next(EXPECT_LIMIT)) &&
-                   reply->value("id", uint64_t(0)) != request_id)
-                ;
-            ready = reply && reply->value("ok", false);
+            ready = answered_ok(page, request_id);
             if (!ready)
                 std::this_thread::sleep_for(milliseconds(100));
         }
