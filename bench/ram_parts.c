@@ -4,6 +4,7 @@
 // here is linked into an image.
 
 #include "firmware/epuck_firmware.h"
+#include "drivers/epuck/epuck_devices.h"
 #include "hal/dspic30/dspic30_board.h"
 
 const char ram_part_vm_bytecode[EPUCK_BYTECODE_WORDS * sizeof(uint16_t)];
@@ -14,3 +15,4 @@ const char ram_part_node_state[sizeof(node_state)];
 const char ram_part_node_receive_frame[sizeof(((node_state *)0)->frame)];
 const char ram_part_firmware[sizeof(epuck_firmware)];
 const char ram_part_board[sizeof(hal_board)];
+const char ram_part_robot_devices[sizeof(epuck_robot)];
