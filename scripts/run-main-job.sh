@@ -19,8 +19,13 @@ project=$(dirname "$host")/run/paper-annex.aesl
 mkdir -p "$(dirname "$project")"
 [ -e "$project" ] || cp examples/paper-annex.aesl "$project"
 
+# The robots start with the example: while the copy is the same, the IDE
+# knows their programs from the start (variables and lines by name).
+same_program=()
+cmp -s "$project" examples/paper-annex.aesl && same_program=(--robots-run-project)
+
 "$bin/aseba-ide" --port "$ide_port" --arena "localhost:$feed_port" --project "$project" \
-    "tcp:localhost;$network_port" &
+    "${same_program[@]}" "tcp:localhost;$network_port" &
 ide=$!
 trap 'kill "$ide" 2>/dev/null || true; wait "$ide" 2>/dev/null || true' EXIT
 sleep 0.3

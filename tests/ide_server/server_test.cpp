@@ -37,26 +37,28 @@ constexpr milliseconds EXPECT_LIMIT{ 8000 };
 class Robots
 {
   public:
-    Robots(uint16_t port, unsigned count)
+    // `options`: more of epuck-emu's options (--load FILE).
+    Robots(uint16_t port, unsigned count, std::vector<std::string> options = {})
       : port_(port)
       , count_(count)
+      , options_(std::move(options))
     {
         start();
     }
 
     void start()
     {
+        std::vector<std::string> command{ console_test::program_path("epuck-emu"),
+                                          "--port",
+                                          std::to_string(port_),
+                                          "--robots",
+                                          std::to_string(count_),
+                                          "--duration",
+                                          "120",
+                                          "--quiet" };
+        command.insert(command.end(), options_.begin(), options_.end());
         process_ = std::make_unique<console_test::ReferenceProgram>(
-          std::vector<std::string>{ console_test::program_path("epuck-emu"),
-                                    "--port",
-                                    std::to_string(port_),
-                                    "--robots",
-                                    std::to_string(count_),
-                                    "--duration",
-                                    "120",
-                                    "--quiet" },
-          std::vector<std::string>{},
-          folder_.path() + "/epuck-emu.log");
+          command, std::vector<std::string>{}, folder_.path() + "/epuck-emu.log");
         // Ready once it accepts a connection.
         auto deadline = Clock::now() + milliseconds(5000);
         while (Clock::now() < deadline) {
@@ -82,6 +84,7 @@ class Robots
   private:
     uint16_t port_;
     unsigned count_;
+    std::vector<std::string> options_;
     console_test::ScratchFolder folder_;
     std::unique_ptr<console_test::ReferenceProgram> process_;
 };
@@ -324,6 +327,60 @@ INSTANTIATE_TEST_SUITE_P(Ide,
                              std::replace(name.begin(), name.end(), '-', '_');
                              return name;
                          });
+
+// Robot `name` as the page first sees it described: in the hello, or in a
+// robot message; null if never.
+Json described_robot(Page &page, const std::string &name)
+{
+    auto deadline = Clock::now() + EXPECT_LIMIT;
+    while (Clock::now() < deadline) {
+        std::optional<Json> message = page.next(EXPECT_LIMIT);
+        if (!message)
+            break;
+        Json robots = message->value("type", "") == "hello" ? message->value("robots", Json())
+                      : message->value("type", "") == "robot"
+                        ? Json::array({ message->value("robot", Json()) })
+                        : Json();
+        for (const Json &robot : robots)
+            if (robot.value("robot", "") == name && robot.value("described", false))
+                return robot;
+    }
+    return Json();
+}
+
+// Robots started with the project's program (epuck-emu --load, as make run
+// does) are known to run it when the IDE is told so: its variables are named
+// from the start, without a load. Without being told, the IDE cannot know
+// (Aseba cannot read bytecode back) and names none.
+TEST(IdeServer, RobotsThatRunTheProjectAreKnownToFromTheStartWhenToldSo)
+{
+    const std::string project = "examples/paper-annex.aesl";
+    uint16_t port = console_test::find_free_port();
+    Robots robots(port, 2, { "--load", project });
+    console_test::ScratchFolder scratch;
+    std::string copy = scratch.path() + "/paper-annex.aesl";
+    std::filesystem::copy_file(project, copy);
+    for (bool told : { true, false }) {
+        SCOPED_TRACE(told ? "told" : "not told");
+        aseba::ide::IdeOptions options;
+        options.project_path = copy;
+        options.robots_run_project = told;
+        Server server("tcp:localhost;" + std::to_string(port), options);
+        ide_test::WebSocketClient client(server.url());
+        Page page(client);
+        Json robot = described_robot(page, "0:1");
+        ASSERT_FALSE(robot.is_null()) << "robot 0:1 never described";
+        EXPECT_EQ(robot.contains("program"), told) << robot.dump().substr(0, 400);
+        bool badness_named = false;
+        for (const Json &variable : robot.value("variables", Json::array()))
+            if (variable.value("name", "") == "badness" && variable.value("user", false))
+                badness_named = true;
+        EXPECT_EQ(badness_named, told);
+        if (told) {
+            EXPECT_EQ(robot["program"].value("bytecodeWords", 0), 206); // asebac's size of it
+        }
+    }
+}
 
 TEST(IdeServer, TwentyTabsAtOnceAreAllServed)
 {

@@ -130,7 +130,8 @@ std::optional<Json> runtime_error_json(const client::Message &message,
 
 struct IdeServer::Robot {
     RobotSnapshot snapshot;
-    bool present = false; // on the network now
+    bool present = false;        // on the network now
+    bool seen_described = false; // described itself at least once
     // The program this server loaded and the robot runs, with its source.
     std::shared_ptr<const client::CompiledProgram> program;
     bool program_stored = false; // written to the robot's flash since loaded
@@ -428,13 +429,31 @@ void IdeServer::robot_changed(RobotSnapshot &&snapshot)
     NodeKey key = snapshot.key;
     Robot &robot = robots_[key];
     bool newly_described = snapshot.described && (!robot.present || !robot.snapshot.described);
+    bool first_described = newly_described && !robot.seen_described;
+    robot.seen_described = robot.seen_described || snapshot.described;
     robot.snapshot = std::move(snapshot);
     robot.present = true;
-    if (newly_described && workspace_.match(key, robot.snapshot.description.name))
+    if (newly_described && workspace_.match(key, robot.snapshot.description.name)) {
         broadcast({ { "type", "script" },
                     { "robot", robot_name(key) },
                     { "source", workspace_.scripts[key] } },
                   Delivery::essential);
+        // Only at a robot's first appearance: one that comes back has
+        // rebooted into whatever its flash holds.
+        if (options_.robots_run_project && first_described && robot.snapshot.compatible) {
+            std::shared_ptr<const client::CompiledProgram> program =
+              compile_for(robot, workspace_.scripts[key]);
+            if (program->result.ok) {
+                robot.program = program;
+                on_network(
+                  [key, program](client::Network &network) {
+                      network.set_program(key, program);
+                      return Json();
+                  },
+                  [](Json &&, const std::string &) {});
+            }
+        }
+    }
     broadcast({ { "type", "robot" }, { "robot", robot_json(robot) } }, Delivery::essential);
     update_watch();
 }

@@ -36,6 +36,10 @@ struct IdeOptions {
     std::vector<std::string> targets; // Aseba networks, transport.hpp syntax
     WebServerOptions web;
     std::string project_path; // an .aesl file to open and save to, or empty
+    // The robots already run the project's programs (epuck-emu --load of the
+    // same file): a robot's program is known from its first description, as
+    // if this IDE had loaded it, without an upload.
+    bool robots_run_project = false;
     // The arena feed of the first target's simulated robots (tcp:HOST;PORT
     // or HOST:PORT), or empty.
     std::string arena_feed;

@@ -62,6 +62,11 @@ int main(int argc, char **argv)
                   "an .aesl project to open at start and to save to (created by the\n"
                   "first save)")
       ->type_name("FILE");
+    app.add_flag("--robots-run-project",
+                 options.robots_run_project,
+                 "the robots already run the project's programs (as epuck-emu --load\n"
+                 "of the same file gives them): name their variables and lines from the\n"
+                 "start, without loading");
     app
       .add_option("--arena",
                   options.arena_feed,
