@@ -125,13 +125,19 @@ TEST(NativeDescriptions, MatchTheReferenceDescriptions)
     }
 }
 
-TEST(NativeDescriptions, StackWordsFollowTheCallingConvention)
+// Every native the project defines: the standard table, then the DSP list.
+std::vector<vm_native> standard_and_dsp_natives()
 {
     const vm_native dsp_natives[] = { NAT_DSP_LIST };
     std::vector<vm_native> natives(nat_standard_table.natives,
                                    nat_standard_table.natives + nat_standard_table.count);
     natives.insert(natives.end(), std::begin(dsp_natives), std::end(dsp_natives));
-    for (const vm_native &record : natives) {
+    return natives;
+}
+
+TEST(NativeDescriptions, StackWordsFollowTheCallingConvention)
+{
+    for (const vm_native &record : standard_and_dsp_natives()) {
         const vm_native *native = &record;
         const auto description = description_of(*native);
         size_t any_size = 0;
@@ -167,11 +173,7 @@ TEST(NativeDescriptions, UseTheWordsOfTheDictionary)
 #undef CHECK_WORD
     EXPECT_EQ(size_t(code - VM_NATIVE_WORD_FIRST), words.size());
 
-    const vm_native dsp_natives[] = { NAT_DSP_LIST };
-    std::vector<vm_native> natives(nat_standard_table.natives,
-                                   nat_standard_table.natives + nat_standard_table.count);
-    natives.insert(natives.end(), std::begin(dsp_natives), std::end(dsp_natives));
-    for (const vm_native &record : natives) {
+    for (const vm_native &record : standard_and_dsp_natives()) {
         const vm_native *native = &record;
         for (const char *byte = vm_native_name(native); *byte != '\0'; ++byte) {
             if (uint8_t(*byte) >= VM_NATIVE_WORD_FIRST) {
