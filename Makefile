@@ -7,7 +7,7 @@
 #   make cross-check   the portable layers with 16- and 32-bit cross compilers
 #   make fuzz          every fuzz target for FUZZ_SECONDS (default 60) each
 #   make bench         performance figures beside the reference (docs/benchmarks.md)
-#   make dspic30       the e-puck's images, with Microchip XC16 (hal/dspic30/module.mk)
+#   make dspic30       the e-puck's images, with XC16 or a pic30-elf GCC (hal/dspic30/module.mk)
 #   make stm32f4       the STM32F4 image, run by QEMU in the tests (hal/stm32f4/module.mk)
 #   make run           the main job
 #   make install       the programs in PREFIX/bin (default /usr/local)
@@ -63,7 +63,7 @@ EXPERIMENT_DEPS_STAMP := $(BUILD)/.deps-experiment
 include $(sort $(wildcard */module.mk */*/module.mk))
 
 $(BUILD)/.deps-%: scripts/install-deps.sh
-	@scripts/install-deps.sh $*
+	@BUILD=$(BUILD) scripts/install-deps.sh $*
 	@mkdir -p $(@D) && touch $@
 
 # --- per-variant rules -----------------------------------------------------
@@ -155,7 +155,7 @@ fuzz: | $(FUZZ_DEPS_STAMP)
 
 # Performance figures beside the reference Aseba: one table, also written to
 # docs/benchmarks.md (see scripts/bench.sh).
-bench: | $(DEPS_STAMP) $(TEST_DEPS_STAMP) $(BENCH_DEPS_STAMP)
+bench: $(DSPIC30_OUT)/epuck-aseba.hex | $(DEPS_STAMP) $(TEST_DEPS_STAMP) $(BENCH_DEPS_STAMP)
 	@scripts/bench.sh $(BUILD)
 
 # The main job; RUN_ARGS go to epuck-emu (e.g. RUN_ARGS="--duration 60").

@@ -124,6 +124,24 @@ ram_loop=$(($(ram_of firmware) - ram_vm_memory - ram_node))
 ram_devices=$(ram_of robot_devices)
 ram_other=$((ram_total - $(ram_of firmware) - ram_board - ram_devices))
 
+# --- the dsPIC30 images, linked (make dspic30) ---------------------------------
+echo "bench: dsPIC30 images" >&2
+dspic=$(bench/dspic30_sizes.py "$build" "$(MAKEFLAGS= make -s --no-print-directory print-DSPIC_PREFIX)")
+dspic_of() { echo "$dspic" | awk -v name="$1" '$1 == name { print $2 }'; }
+bytes_of_words() { echo $(($1 * 3)); } # the paper's unit: 3 bytes per instruction word
+dspic_core_code=$(($(dspic_of code_vm) + $(dspic_of code_natives) + $(dspic_of code_node)))
+dspic_core_const=$(($(dspic_of const_vm) + $(dspic_of const_natives) + $(dspic_of const_node)))
+dspic_core_bytes=$(bytes_of_words $((dspic_core_code + dspic_core_const)))
+dspic_ram_total=$(dspic_of ram_total)
+dspic_ram_vm=$(($(dspic_of vm_bytecode) + $(dspic_of vm_variables) + $(dspic_of vm_stack)))
+dspic_ram_node=$(dspic_of node_state)
+dspic_ram_loop=$(($(dspic_of firmware) - dspic_ram_vm - dspic_ram_node))
+dspic_ram_other=$((dspic_ram_total - $(dspic_of firmware) - $(dspic_of board) - $(dspic_of robot_devices)))
+dspic_parts=""
+for part in vm node natives dsp_natives firmware drivers store port runtime other; do
+    dspic_parts+="${dspic_parts:+, }$part $(dspic_of code_$part)+$(dspic_of const_$part)"
+done
+
 # --- compiler --------------------------------------------------------------
 echo "bench: compiler" >&2
 compiler=$("$bin/bench-compiler" $compiler_runs)
@@ -279,6 +297,16 @@ table=$(
     echo "| VM on the Cortex-M4 (QEMU -icount): instructions per bytecode step, computed goto | $stm32f4_per_step | - | - | |"
 )
 
+dspic_table=$(
+    echo "| figure (make dspic30, pic30-elf-gcc -Os, linked) | dsPIC30F6014A | avr-gcc | Cortex-M4 | goal |"
+    echo "|---|---|---|---|---|"
+    echo "| VM + standard natives + node: code + constants, bytes (3 per instruction word on the dsPIC) | $dspic_core_bytes ($dspic_core_code + $dspic_core_const words) | $avr_flash | $arm_flash | ≤ $paper_budget_bytes (paper) |"
+    echo "| application image: code + constants, instruction words (bytes) | $(dspic_of application_code) + $(dspic_of application_const) ($(bytes_of_words $(($(dspic_of application_code) + $(dspic_of application_const))))) | - | - | below the descriptor, 45,216 words |"
+    echo "| application by part, code + constants, words | $dspic_parts | - | - | |"
+    echo "| bootloader image: code + constants, instruction words (bytes) | $(dspic_of bootloader_code) + $(dspic_of bootloader_const) ($(bytes_of_words $(($(dspic_of bootloader_code) + $(dspic_of bootloader_const))))) | - | - | ≤ 2,048 words (64 rows) |"
+    echo "| RAM of the application, bytes: VM memory $dspic_ram_vm, node $dspic_ram_node (receive frame $(dspic_of node_receive_frame)), main loop $dspic_ram_loop, drivers $(dspic_of robot_devices), board $(dspic_of board), other $dspic_ram_other; the stack gets the rest | $dspic_ram_total (+ $(dspic_of ram_stack) stack) | $ram_total | $stm32f4_ram | ≤ $ram_goal_bytes (paper) |"
+)
+
 # What follows this line in the report is written by hand and kept.
 notes_marker='<!-- Written by hand below this line: make bench keeps it. -->'
 notes=""
@@ -297,6 +325,16 @@ cores=$(nproc)
     echo "is Debian's \`aseba\` 1.6.99, measured in the same run."
     echo
     echo "$table"
+    echo
+    echo "## The e-puck's dsPIC30 images"
+    echo
+    echo "From the programs \`make dspic30\` links (the GPL pic30-elf-gcc 4.5.1 of XC16"
+    echo "v2.10, -Os): bench/dspic30_sizes.py reads the linker's map files, input"
+    echo "section by input section, and sizes the RAM's parts with the dsPIC compiler"
+    echo "(bench/ram_parts.c). The avr-gcc and Cortex-M4 columns are the proxies of the"
+    echo "table above, for comparison."
+    echo
+    echo "$dspic_table"
     echo
     echo "## The group IDE"
     echo
@@ -413,6 +451,8 @@ cores=$(nproc)
     fi
 } >"$report"
 echo "$table"
+echo
+echo "$dspic_table"
 echo
 echo "$network_table"
 echo

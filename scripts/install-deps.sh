@@ -11,7 +11,19 @@
 #   fuzz   clang and libFuzzer for `make fuzz`
 #   bench  valgrind and the reference Aseba for `make bench`
 #   experiment  matplotlib for the figure of `make experiment`
+#   dspic30  what `make dspic30` needs without Microchip XC16: the libraries of
+#          the GPL pic30-elf toolchain, which it then unpacks into
+#          $BUILD/toolchains (BUILD, default build) from
+#          ../shared/toolchains/pic30/ beside the checkout
 set -euo pipefail
+self=$(realpath "$0")
+cd "$(dirname "$self")/.."
+build=${BUILD:-build}
+
+# One install at a time: make runs the groups of a target in parallel, and
+# apt-get refuses to run twice at once. The script itself is the lock.
+exec 9<"$self"
+flock 9
 
 declare -A groups=(
     [build]="make g++ gcc
@@ -26,6 +38,7 @@ declare -A groups=(
              gcc-arm-none-eabi libnewlib-arm-none-eabi simavr libsimavr-dev qemu-system-arm
              mosquitto"
     [experiment]="python3 python3-matplotlib"
+    [dspic30]="xz-utils libgmp10 zlib1g libexpat1 python3"
 )
 # What each package is for:
 #   libpugixml-dev      .aesl projects (XML)
@@ -46,6 +59,7 @@ declare -A groups=(
 #   libmosquitto-dev    aseba-mqtt's MQTT client (docs/mqtt.md)
 #   mosquitto, python3-paho-mqtt   the broker of its tests and benchmarks, and
 #                       the client of its Python example (examples/mqtt)
+#   libgmp10, zlib1g, libexpat1    what the pic30-elf compiler and binutils link
 
 wanted=("$@")
 [ ${#wanted[@]} -gt 0 ] || wanted=(build)
@@ -87,4 +101,18 @@ if [[ " ${packages[*]} " == *" nodejs "* ]] && ! command -v npm >/dev/null; then
     echo "install-deps: installing npm"
     export DEBIAN_FRONTEND=noninteractive
     as_root apt-get install -y -q --no-install-recommends npm
+fi
+
+# The GPL build of XC16's compiler and binutils, unpacked once.
+if [[ " ${wanted[*]} " == *" dspic30 "* ]] && [ ! -x "$build/toolchains/pic30-elf/bin/pic30-elf-gcc" ]; then
+    archives=(../shared/toolchains/pic30/pic30-elf-*.tar.xz)
+    if [ ! -f "${archives[0]}" ]; then
+        echo "install-deps: no dsPIC toolchain: ../shared/toolchains/pic30/pic30-elf-*.tar.xz is not beside" >&2
+        echo "  this checkout. Install Microchip MPLAB XC16 (https://www.microchip.com/xc16) and run" >&2
+        echo "  make dspic30 XC16_DIR=ITS/bin, or give DSPIC_TOOLCHAIN=DIR, a pic30-elf GCC toolchain." >&2
+        exit 1
+    fi
+    echo "install-deps: unpacking ${archives[0]##*/} into $build/toolchains"
+    mkdir -p "$build/toolchains"
+    tar -xJf "${archives[0]}" -C "$build/toolchains"
 fi

@@ -15,6 +15,19 @@ static hal_board board;
 static epuck_robot devices;
 static epuck_firmware firmware;
 
+// Every device of the board, in the order of dspic30_board.h. Here, not
+// beside the clock: the bootloader image starts only the clock, the pins
+// and the UART, and must not refer to the rest.
+void dspic30_board_init(hal_board *chip_board)
+{
+    dspic30_clock_init(chip_board);
+    dspic30_gpio_init(chip_board);
+    dspic30_uart_init(chip_board);
+    dspic30_timers_init(chip_board);
+    dspic30_adc_init(chip_board);
+    dspic30_i2c_init(chip_board);
+}
+
 int main(void)
 {
     dspic30_reset_again_after_power_on(&board);

@@ -1,4 +1,4 @@
-// The board's start-up, its millisecond clock (Timer1), interrupt masking,
+// The board's clock: its millisecond clock (Timer1), interrupt masking,
 // reset and idle on the dsPIC30F6014A.
 //
 // The oscillator itself is set by the FOSC configuration word (XT crystal
@@ -16,16 +16,6 @@ DSPIC30_CONFIG_WORD(FGS, DSPIC30_FGS_VALUE);
 
 #define MICROSECONDS_PER_SECOND 1000000ul
 #define MILLISECONDS_PER_SECOND 1000u
-
-void dspic30_board_init(hal_board *board)
-{
-    dspic30_clock_init(board);
-    dspic30_gpio_init(board);
-    dspic30_uart_init(board);
-    dspic30_timers_init(board);
-    dspic30_adc_init(board);
-    dspic30_i2c_init(board);
-}
 
 void dspic30_clock_init(hal_board *board)
 {

@@ -11,27 +11,19 @@
 // longer sums take the portable loop. The rounding and the saturation to
 // int16 are then done in the accumulator with shifts and one SAC.
 //
-// XC16 is not available where this was written: the builtins are used as
-// Microchip's XC16 C Compiler User's Guide documents them ("DSP builtins":
-// __builtin_clr, __builtin_mac, __builtin_sftac, __builtin_sac); facts
-// marked ⚠ come from memory of the dsPIC30F Family Reference Manual and
-// were not checked against it. tests/native_functions_dsp/ compiles this
-// file on the host against a model of those builtins (defining
-// NAT_DSP_SIMULATED_DSP_ENGINE and including the model before this file)
-// and compares it with the portable loop.
+// The engine is driven by one inline assembly block, written from the
+// 16-bit MCU and DSC Programmer's Reference Manual (MAC, SFTAC, SAC, CLR):
+// XC16's DSP builtins (__builtin_mac, __builtin_sftac, ...) were tried
+// first, and the compiler built from XC16's GPL sources refuses any
+// function where SFTAC follows a MAC ("Argument 0 should be an accumulator
+// register") unless the accumulator is a volatile register variable, which
+// GCC warns about unconditionally. Facts marked ⚠ were not checked against
+// the Family Reference Manual.
 
 #include <stddef.h>
 
-#include "nat_dsp_internal.h"
-
-#ifndef NAT_DSP_SIMULATED_DSP_ENGINE
 #include "dspic30_registers.h"
-// CORCON by its data-space address, as the rest of the port reaches SFRs.
-#define CORCON (*(volatile uint16_t *)DSPIC30_CORCON)
-// Accumulator A as a C variable, the way the XC16 guide's DSP builtin
-// examples declare it (`int` is 16 bits with XC16).
-#define DSP_ACCUMULATOR_A(name) volatile register int name asm("A")
-#endif
+#include "nat_dsp_internal.h"
 
 // CORCON bits (positions: hardware fact sheet, CORCON row; meanings ⚠).
 #define CORCON_IF     (1u << 0)  // 1: integer multiply, product not shifted left
@@ -46,8 +38,8 @@
 // words, so no script reaches the fallback there.
 #define DSP_EXACT_PRODUCT_COUNT 511
 
-// A's integer value is in bits 39..0; SAC stores bits 31..16.
-#define ACCUMULATOR_HIGH_WORD_SHIFT 16
+// SFTAC shifts by -16 ... 16 at once.
+#define SFTAC_LARGEST_SHIFT 16u
 
 // The portable loop (nat_dsp_kernel.c), for sums too long for A.
 static int16_t long_scaled_dot_product(const int16_t *a,
@@ -78,52 +70,63 @@ int16_t nat_dsp_scaled_dot_product(const int16_t *a,
     // the other bits (PSV, the interrupt level) are kept, and everything is
     // restored before returning. Writing back the read value leaves the DO
     // loop bits alone: DL is read-only and EDT reads as 0 (⚠).
-    uint16_t saved_corcon = CORCON;
-    CORCON = (uint16_t)((saved_corcon & ~CORCON_US) | CORCON_IF | CORCON_ACCSAT | CORCON_SATDW |
-                        CORCON_SATA);
-
-    // S = sum of a[i] * b[i * b_step], exact: |S| <= 511 * 2^30 < 2^39, so
-    // A never saturates. No X/Y prefetch: the VM's variables may lie
-    // anywhere in RAM, while prefetches must read X or Y space.
-    DSP_ACCUMULATOR_A(accumulator);
-    accumulator = __builtin_clr();
-    int16_t b_offset = 0; // |b_offset| <= count <= 511
-    for (uint16_t i = 0; i < count; ++i) {
-        accumulator =
-          __builtin_mac(accumulator, a[i], b[b_offset], NULL, NULL, 0, NULL, NULL, 0, NULL, 0);
-        b_offset = (int16_t)(b_offset + b_step);
-    }
+    uint16_t saved_corcon = dspic30_read(DSPIC30_CORCON);
+    dspic30_write(DSPIC30_CORCON,
+                  (uint16_t)((saved_corcon & ~CORCON_US) | CORCON_IF | CORCON_ACCSAT |
+                             CORCON_SATDW | CORCON_SATA));
 
     // Rounded half up: R = floor((S + 2^(shift-1)) / 2^shift), computed as
     // floor((floor(S / 2^(shift-1)) + 1) / 2) (equal, since floor(x / 2) =
     // floor(floor(x) / 2)). SFTAC by a positive count is an arithmetic right
-    // shift, that is a floor also for negative S; it takes only literal
-    // counts, hence the binary steps for shift - 1 = 0 ... 30.
-    if (shift > 0) {
-        uint16_t first_shift = (uint16_t)(shift - 1);
-        if (first_shift & 16)
-            accumulator = __builtin_sftac(accumulator, 16);
-        if (first_shift & 8)
-            accumulator = __builtin_sftac(accumulator, 8);
-        if (first_shift & 4)
-            accumulator = __builtin_sftac(accumulator, 4);
-        if (first_shift & 2)
-            accumulator = __builtin_sftac(accumulator, 2);
-        if (first_shift & 1)
-            accumulator = __builtin_sftac(accumulator, 1);
-        // + 1 in bit 0: the integer product 1 x 1.
-        accumulator = __builtin_mac(accumulator, 1, 1, NULL, NULL, 0, NULL, NULL, 0, NULL, 0);
-        accumulator = __builtin_sftac(accumulator, 1);
-    }
+    // shift, that is a floor also for negative S, of at most 16 bits at a
+    // time: shift - 1 <= 30 in two steps.
+    uint16_t first_shift = shift > 0 ? (uint16_t)(shift - 1) : 0;
+    uint16_t first_step = first_shift > SFTAC_LARGEST_SHIFT ? SFTAC_LARGEST_SHIFT : first_shift;
+    uint16_t second_step = (uint16_t)(first_shift - first_step);
+    int16_t b_stride = (int16_t)(b_step * (int16_t)sizeof(int16_t)); // |b_step| <= 1
+    int16_t result;
 
-    // Saturated to int16: R moves to bits 31..16, where SAC reads. If
-    // |R| < 2^23 the shift is exact, and SAC (SATDW) stores 0x7FFF when
-    // R * 2^16 > 2^31 - 1, that is R > 32767, 0x8000 when R < -32768, else
-    // bits 31..16 = R. A larger |R| overflows 40 bits: A saturates (SATA,
-    // ACCSAT ⚠ SFTAC saturates like MAC) keeping the sign, and SAC clamps.
-    accumulator = __builtin_sftac(accumulator, -ACCUMULATOR_HIGH_WORD_SHIFT);
-    int16_t result = (int16_t)__builtin_sac(accumulator, 0);
+    // S = sum of a[i] * b[i * b_step], exact: |S| <= 511 * 2^30 < 2^39, so
+    // A never saturates. No X/Y prefetch: the VM's variables may lie
+    // anywhere in RAM, while prefetches must read X or Y space. MAC takes
+    // its factors in W4...W7.
+    //
+    // Then, when shift > 0, the two shifts, + 1 in bit 0 (the integer
+    // product 1 x 1) and one more shift. Last, R moves to bits 31..16 where
+    // SAC reads: if |R| < 2^23 the shift is exact, and SAC (SATDW) stores
+    // 0x7FFF when R * 2^16 > 2^31 - 1, that is R > 32767, 0x8000 when
+    // R < -32768, else bits 31..16 = R. A larger |R| overflows 40 bits: A
+    // saturates (SATA, ACCSAT; ⚠ SFTAC saturates like MAC) keeping the
+    // sign, and SAC clamps.
+    __asm__ volatile("clr     A\n"
+                     "cp0     %[count]\n"
+                     "bra     z, 2f\n"
+                     "1:\n"
+                     "mov     [%[a]++], w4\n"
+                     "mov     [%[b]], w5\n"
+                     "add     %[b], %[b_stride], %[b]\n"
+                     "mac     w4*w5, A\n"
+                     "dec     %[count], %[count]\n"
+                     "bra     nz, 1b\n"
+                     "2:\n"
+                     "cp0     %[shift]\n"
+                     "bra     z, 3f\n"
+                     "sftac   A, %[first_step]\n"
+                     "sftac   A, %[second_step]\n"
+                     "mov     #1, w4\n"
+                     "mov     #1, w5\n"
+                     "mac     w4*w5, A\n"
+                     "sftac   A, #1\n"
+                     "3:\n"
+                     "sftac   A, #-16\n"
+                     "sac     A, #0, %[result]\n"
+                     : [a] "+r"(a), [b] "+r"(b), [count] "+r"(count), [result] "=r"(result)
+                     : [b_stride] "r"(b_stride),
+                       [shift] "r"(shift),
+                       [first_step] "r"(first_step),
+                       [second_step] "r"(second_step)
+                     : "w4", "w5", "cc", "memory");
 
-    CORCON = saved_corcon;
+    dspic30_write(DSPIC30_CORCON, saved_corcon);
     return result;
 }

@@ -186,6 +186,7 @@
 // Provided by the test: the simulated chip.
 uint16_t dspic30_simulated_read(uint16_t address);
 void dspic30_simulated_write(uint16_t address, uint16_t value);
+void dspic30_simulated_write_byte(uint16_t address, uint8_t value);
 void dspic30_simulated_table_write_low(uint16_t offset, uint16_t value);
 void dspic30_simulated_table_write_high(uint16_t offset, uint16_t value);
 uint16_t dspic30_simulated_table_read_low(uint16_t offset);
@@ -201,6 +202,10 @@ static inline uint16_t dspic30_read(uint16_t address)
 static inline void dspic30_write(uint16_t address, uint16_t value)
 {
     dspic30_simulated_write(address, value);
+}
+static inline void dspic30_write_byte(uint16_t address, uint8_t value)
+{
+    dspic30_simulated_write_byte(address, value);
 }
 static inline void dspic30_table_write_low(uint16_t offset, uint16_t value)
 {
@@ -244,48 +249,57 @@ static inline void dspic30_jump(uint16_t address)
 #define DSPIC30_INTERRUPT
 #define DSPIC30_CONFIG_WORD(name, value) const uint16_t dspic30_config_##name = (value)
 
-#else // the chip, compiled by XC16
+#else // the chip, compiled by XC16 or the GPL pic30-elf GCC
 
-static inline uint16_t dspic30_read(uint16_t address)
+// Each accessor is one or two instructions: always inlined, since -Os
+// otherwise keeps one out-of-line copy per file and calls it.
+#define DSPIC30_ACCESSOR  static inline __attribute__((always_inline))
+
+DSPIC30_ACCESSOR uint16_t dspic30_read(uint16_t address)
 {
     return *(volatile uint16_t *)address;
 }
-static inline void dspic30_write(uint16_t address, uint16_t value)
+DSPIC30_ACCESSOR void dspic30_write(uint16_t address, uint16_t value)
 {
     *(volatile uint16_t *)address = value;
 }
+// One byte of data space (RAM), at any address.
+DSPIC30_ACCESSOR void dspic30_write_byte(uint16_t address, uint8_t value)
+{
+    *(volatile uint8_t *)address = value;
+}
 // TBLWTL/TBLWTH/TBLRDL/TBLRDH at TBLPAG:offset.
-static inline void dspic30_table_write_low(uint16_t offset, uint16_t value)
+DSPIC30_ACCESSOR void dspic30_table_write_low(uint16_t offset, uint16_t value)
 {
     __builtin_tblwtl(offset, value);
 }
-static inline void dspic30_table_write_high(uint16_t offset, uint16_t value)
+DSPIC30_ACCESSOR void dspic30_table_write_high(uint16_t offset, uint16_t value)
 {
     __builtin_tblwth(offset, value);
 }
-static inline uint16_t dspic30_table_read_low(uint16_t offset)
+DSPIC30_ACCESSOR uint16_t dspic30_table_read_low(uint16_t offset)
 {
     return __builtin_tblrdl(offset);
 }
-static inline uint16_t dspic30_table_read_high(uint16_t offset)
+DSPIC30_ACCESSOR uint16_t dspic30_table_read_high(uint16_t offset)
 {
     return __builtin_tblrdh(offset);
 }
 // DISI #5, 0x55 then 0xAA into NVMKEY, set NVMCON.WR, two NOPs: XC16's
 // builtin emits exactly the unlock sequence of §1.3.
-static inline void dspic30_nvm_unlock_and_start(void)
+DSPIC30_ACCESSOR void dspic30_nvm_unlock_and_start(void)
 {
     __builtin_write_NVM();
 }
-static inline void dspic30_nop(void)
+DSPIC30_ACCESSOR void dspic30_nop(void)
 {
     __builtin_nop();
 }
-static inline void dspic30_idle_instruction(void)
+DSPIC30_ACCESSOR void dspic30_idle_instruction(void)
 {
     __asm__ volatile("pwrsav #1");
 }
-static inline void dspic30_reset_instruction(void)
+DSPIC30_ACCESSOR void dspic30_reset_instruction(void)
 {
     __asm__ volatile("reset");
 }

@@ -16,6 +16,10 @@ typedef char longest_period_fits[(uint64_t)EPUCK_TIMER_MAX_PERIOD_US * DSPIC30_F
                                        MICROSECONDS_PER_SECOND
                                    ? 1
                                    : -1];
+// counts_in's limits: periods of at most a second, and the instruction
+// clock a whole number of prescaled ticks per second.
+typedef char period_fits_counts_in[EPUCK_TIMER_MAX_PERIOD_US <= MICROSECONDS_PER_SECOND ? 1 : -1];
+typedef char clock_divides_by_prescales[DSPIC30_FCY_HZ % LARGEST_PRESCALE == 0 ? 1 : -1];
 
 // The registers of one chip timer.
 typedef struct timer_registers {
@@ -67,6 +71,20 @@ static const timer_registers timer_map[EPUCK_TIMER_COUNT] = {
 // Prescale of each TCKPS code.
 static const uint16_t prescales[PRESCALER_COUNT] = { 1, 8, 64, LARGEST_PRESCALE };
 
+// round(microseconds * hz / 10^6) in 32-bit arithmetic, exactly: the
+// dsPIC has no 64-bit helpers (dspic30_runtime.c). With hz split into its
+// millions, thousands and units, microseconds * hz = whole * 10^6 +
+// thousands * 10^3 + units, and for microseconds <= 10^6 every part fits.
+static uint32_t counts_in(uint32_t microseconds, uint32_t hz)
+{
+    uint32_t whole = microseconds * (hz / MICROSECONDS_PER_SECOND);
+    uint32_t thousands = microseconds * (hz / 1000ul % 1000ul);
+    uint32_t units = microseconds * (hz % 1000ul);
+    return whole + thousands / 1000ul +
+           ((thousands % 1000ul) * 1000ul + units + MICROSECONDS_PER_SECOND / 2u) /
+             MICROSECONDS_PER_SECOND;
+}
+
 bool dspic30_timer_period(uint32_t period_microseconds,
                           uint16_t *period_register,
                           uint16_t *prescaler_code)
@@ -78,9 +96,7 @@ bool dspic30_timer_period(uint32_t period_microseconds,
         return false;
     for (code = 0; code < PRESCALER_COUNT; code++) {
         // Timer counts in the period, rounded to the nearest.
-        uint64_t counts = ((uint64_t)DSPIC30_FCY_HZ * period_microseconds +
-                           (uint64_t)prescales[code] * MICROSECONDS_PER_SECOND / 2u) /
-                          ((uint64_t)prescales[code] * MICROSECONDS_PER_SECOND);
+        uint32_t counts = counts_in(period_microseconds, DSPIC30_FCY_HZ / prescales[code]);
         if (counts >= DSPIC30_TIMER_PERIOD_OFFSET &&
             counts - DSPIC30_TIMER_PERIOD_OFFSET <= TIMER_REGISTER_MAX) {
             *period_register = (uint16_t)(counts - DSPIC30_TIMER_PERIOD_OFFSET);

@@ -142,7 +142,7 @@ TEST(LinkerScripts, TheBootloadersRegionsAreTheLayoutsConstants)
     EXPECT_LE(found["aivt"].end(), BOOT_APPLICATION_START);
     expect_region(found, "application", BOOT_APPLICATION_START, BOOT_APPLICATION_END);
     expect_region(found, "bytecode_store", STORE_REGION_BASE, STORE_REGION_END);
-    expect_region(found, "aseba_bootloader", BOOT_LOADER_BASE, BOOT_LOADER_END);
+    expect_region(found, "program", BOOT_LOADER_BASE, BOOT_LOADER_END);
     expect_region(found, "tiny_bootloader", BOOT_TINY_BASE, HAL_FLASH_END);
     auto named = constants(bootloader_script);
     EXPECT_EQ(named["APPLICATION_TABLE_BASE"], BOOT_TABLE_BASE);
@@ -251,7 +251,7 @@ TEST(LinkerScripts, TheBootloadersVectorsLeadToTheApplicationsSlots)
     EXPECT_NE(section(bootloader_script, ".reset").find("SHORT(ABSOLUTE(__reset));"),
               std::string::npos);
     EXPECT_NE(section(bootloader_script, ".text").find("ASEBA_BOOTLOADER_BASE"), std::string::npos);
-    EXPECT_NE(bootloader_script.find("} >aseba_bootloader"), std::string::npos);
+    EXPECT_NE(bootloader_script.find("} >program"), std::string::npos);
 }
 
 } // namespace

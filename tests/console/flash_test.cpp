@@ -120,6 +120,27 @@ TEST_F(Flash, FlashesAGroupOfSixInOneCommand)
         expect_flash_holds(scratch_.path(), id, image);
 }
 
+// The application image that `make dspic30` links for the e-puck, as a
+// user flashes it: epuck-image reads it, the robots' bootloaders accept it
+// whole (descriptor, CRC), and every instruction of it is in every robot.
+TEST_F(Flash, FlashesTheLinkedDspic30Application)
+{
+    aseba::flash::ProgramImage image =
+      aseba::flash::read_microchip_hex_file(DSPIC30_APPLICATION_IMAGE, HAL_FLASH_END);
+    ASSERT_NO_THROW(aseba::flash::check_application_image(image));
+    size_t pages = aseba::flash::make_pages(image).size();
+
+    CommandResult flash = aseba({ "flash", DSPIC30_APPLICATION_IMAGE });
+    EXPECT_EQ(flash.exit_code, 0) << flash.out << flash.err;
+    EXPECT_EQ(count_lines_with(
+                flash.out, "flashed " + std::to_string(pages) + " pages, running the new image"),
+              GROUP)
+      << flash.out;
+    emulator_.kill_now();
+    for (unsigned id = 1; id <= GROUP; id++)
+        expect_flash_holds(scratch_.path(), id, image);
+}
+
 // A robot flashed with an image its bootloader refuses (here through the
 // client library, which `aseba flash` would not do) waits in its bootloader
 // and answers no node messages; named by id, it is flashed anyway and comes

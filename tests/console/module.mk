@@ -22,3 +22,8 @@ console_test_LDLIBS := -lgtest -lgtest_main -pthread
 CONSOLE_TEST_PROGRAMS := epuck-emu aseba asebac epuck-image aseba-mqtt
 $(foreach v,$(VARIANTS),$(eval \
   $(BUILD)/$(v)/tests/console_test: | $(foreach p,$(CONSOLE_TEST_PROGRAMS),$(BUILD)/$(v)/bin/$(p))))
+
+# `aseba flash` of the dsPIC30 application image that `make dspic30` links:
+# the test reads it, so the test program waits for it.
+EXTRA_CFLAGS_tests/console/flash_test := '-DDSPIC30_APPLICATION_IMAGE="$(DSPIC30_OUT)/epuck-aseba.hex"'
+$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/tests/console_test: $(DSPIC30_OUT)/epuck-aseba.hex))

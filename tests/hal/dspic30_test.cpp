@@ -16,6 +16,7 @@ extern "C" {
 #include "drivers/epuck/epuck_devices.h"
 #include "firmware/epuck_firmware.h"
 #include "hal/dspic30/dspic30_board.h"
+#include "hal/dspic30/dspic30_startup.h"
 extern const uint16_t dspic30_config_FOSC;
 extern const uint16_t dspic30_config_FWDT;
 extern const uint16_t dspic30_config_FBORPOR;
@@ -741,3 +742,52 @@ TEST_F(Dspic30, IdleAndResetUseTheirInstructions)
 }
 
 } // namespace
+
+// Every period the board accepts, against the exact rational count
+// round(microseconds × FCY / (prescale × 10^6)) in 64 bits (§2.2): the
+// port computes it in 32 bits, for the dsPIC has no 64-bit helpers.
+TEST_F(Dspic30, TimerPeriodsAreExactInThirtyTwoBits)
+{
+    const uint64_t fcy = 7372800ull * 8 / 4;
+    const uint64_t prescale[] = { 1, 8, 64, 256 };
+    for (uint32_t microseconds = 20; microseconds <= 1000000; microseconds += 7) {
+        uint16_t period = 0, code = 0;
+        ASSERT_TRUE(dspic30_timer_period(microseconds, &period, &code)) << microseconds;
+        uint64_t scale = prescale[code] * 1000000ull;
+        uint64_t counts = (uint64_t(microseconds) * fcy + scale / 2) / scale;
+        ASSERT_EQ(uint64_t(period) + 1, counts) << microseconds;
+    }
+}
+
+// The start-up's data initialisation (dspic30_startup.c) against a
+// template laid out as the linker writes it with --no-pack-data (records of
+// destination, length in bytes, format; 0 clears, 1 copies two bytes per
+// program word; a zero destination ends), placed across a 64 K boundary of
+// program memory so that TBLPAG must move on.
+TEST_F(Dspic30, StartUpFillsRamFromTheLinkersTemplate)
+{
+    const uint32_t template_pc = 0xFFF8;
+    const std::vector<uint32_t> words = {
+        0x0800, 5, 1, 0x2211, 0x4433, 0x0055, // copy 11 22 33 44 55 to 0x0800
+        0x0900, 4, 0,                         // clear 0x0900..0x0903
+        0x0000,                               // end
+    };
+    for (size_t i = 0; i < words.size(); ++i)
+        chip.flash[template_pc / 2 + i] = words[i];
+    chip.ram[0x0805] = 0x77; // just past the odd-length copy: untouched
+    ASSERT_TRUE(dspic30_initialise_data(template_pc));
+    EXPECT_EQ(std::vector<uint8_t>(chip.ram.begin() + 0x0800, chip.ram.begin() + 0x0806),
+              (std::vector<uint8_t>{ 0x11, 0x22, 0x33, 0x44, 0x55, 0x77 }));
+    EXPECT_EQ(std::vector<uint8_t>(chip.ram.begin() + 0x0900, chip.ram.begin() + 0x0905),
+              (std::vector<uint8_t>{ 0, 0, 0, 0, simulated::Chip::ram_fill }));
+}
+
+TEST_F(Dspic30, StartUpRefusesAPackedTemplate)
+{
+    const uint32_t template_pc = 0x4000;
+    const std::vector<uint32_t> words = { 0x0800, 3, 2, 0x332211, 0x0000 }; // format 2: packed
+    for (size_t i = 0; i < words.size(); ++i)
+        chip.flash[template_pc / 2 + i] = words[i];
+    EXPECT_FALSE(dspic30_initialise_data(template_pc));
+    EXPECT_EQ(chip.ram[0x0800], simulated::Chip::ram_fill);
+}

@@ -282,6 +282,10 @@ void dspic30_simulated_write(uint16_t address, uint16_t value)
 {
     simulated::chip().write(address, value);
 }
+void dspic30_simulated_write_byte(uint16_t address, uint8_t value)
+{
+    simulated::chip().ram.at(address) = value;
+}
 void dspic30_simulated_table_write_low(uint16_t offset, uint16_t value)
 {
     simulated::chip().table_write(offset, value, false);

@@ -72,6 +72,10 @@ class Chip
 
     std::vector<uint32_t> flash;
     std::vector<uint16_t> eeprom;
+    // Data space as bytes (SFRs aside), for code that writes RAM through
+    // dspic30_write_byte; filled with a pattern no start-up would write.
+    static constexpr uint8_t ram_fill = 0xA5;
+    std::vector<uint8_t> ram = std::vector<uint8_t>(0x2800, ram_fill);
 
   private:
     uint16_t registers[0x800 / 2] = {};

@@ -23,15 +23,3 @@ PROGRAMS += bench-dsp
 bench-dsp_SOURCES := tests/native_functions_dsp/dsp_bench.cpp tests/native_functions_dsp/dsp_node.cpp
 bench-dsp_LIBS := aseba_compiler aseba_natives aseba_vm
 
-# hal/dspic30/dspic30_dsp_kernel.c (the dsPIC30F build's DSP-engine inner
-# loop) compiled on the host against a model of XC16's DSP builtins (included
-# ahead of it), its function renamed so that it links next to the portable
-# one it is compared with.
-EXTRA_CFLAGS_hal/dspic30/dspic30_dsp_kernel := -DNAT_DSP_SIMULATED_DSP_ENGINE \
-    -include tests/native_functions_dsp/dspic30_dsp_engine_model.h \
-    -Dnat_dsp_scaled_dot_product=nat_dsp_scaled_dot_product_dspic30
-TESTS += dsp_dspic30_kernel_test
-dsp_dspic30_kernel_test_SOURCES := tests/native_functions_dsp/dsp_dspic30_kernel_test.cpp \
-                                   hal/dspic30/dspic30_dsp_kernel.c
-dsp_dspic30_kernel_test_LIBS := aseba_natives
-dsp_dspic30_kernel_test_LDLIBS := -lgtest -lgtest_main -pthread

@@ -4,6 +4,8 @@
 // first, it installs the factory image on a robot through the factory Tiny
 // Bootloader (install_command.hpp).
 
+#include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <string>
@@ -22,7 +24,8 @@ namespace
 
 constexpr const char *usage =
   R"(usage: epuck-image APPLICATION.hex BOOTLOADER.hex OUTPUT.hex FACTORY.hex
-       epuck-image install --port DEVICE [--id N] [--wait SECONDS] FACTORY.hex)";
+       epuck-image install --port DEVICE [--id N] [--wait SECONDS] FACTORY.hex
+       epuck-image dump IMAGE.hex)";
 
 constexpr const char *details =
   R"(Builds the e-puck's images from the XC16 HEX files of the application
@@ -40,7 +43,10 @@ linker/epuck-bootloader.gld):
                programmer
 
 The second form installs FACTORY.hex on a robot through its factory Tiny
-Bootloader (`epuck-image install --help` tells more).)";
+Bootloader (`epuck-image install --help` tells more). The third prints
+every instruction and configuration word of IMAGE.hex as this program reads
+it, one "ADDRESS VALUE" line each (PC addresses, hexadecimal), in address
+order: what `make dspic30` compares with the linked programs.)";
 
 void write_file(const std::string &path, const std::string &text)
 {
@@ -77,6 +83,38 @@ Files parse_command_line(int argc, char **argv)
     return files;
 }
 
+// `epuck-image dump IMAGE.hex`: the image's words as read_microchip_hex reads them.
+int dump(const std::vector<std::string> &arguments)
+{
+    if (arguments.size() != 1) {
+        std::cerr << "epuck-image: usage: epuck-image dump IMAGE.hex\n";
+        return aseba::command_line::EXIT_USAGE;
+    }
+    aseba::flash::ProgramImage image;
+    try {
+        // Any address: a dump shows what is there, descriptor included.
+        image = aseba::flash::read_microchip_hex_file(arguments[0], UINT32_MAX);
+    } catch (const std::exception &error) {
+        std::cerr << "epuck-image: " << error.what() << "\n";
+        return aseba::command_line::EXIT_USAGE;
+    }
+    char line[32];
+    auto print = [&](uint32_t address, uint32_t value) {
+        std::snprintf(line, sizeof line, "0x%06X 0x%06X\n", unsigned(address), unsigned(value));
+        std::cout << line;
+    };
+    for (const auto &[address, value] : image.instructions)
+        print(address, value);
+    for (const auto &[address, value] : image.configuration)
+        print(address, value);
+    std::cout.flush();
+    if (!std::cout) {
+        std::cerr << "epuck-image: the dump cannot be written\n";
+        return aseba::command_line::EXIT_FAILED;
+    }
+    return aseba::command_line::EXIT_OK;
+}
+
 } // namespace
 
 int main(int argc, char **argv)
@@ -84,6 +122,8 @@ int main(int argc, char **argv)
     if (argc >= 2 && std::string(argv[1]) == "install")
         return aseba::flash::run_install_command(
           std::vector<std::string>(argv + 2, argv + argc), std::cout, std::cerr);
+    if (argc >= 2 && std::string(argv[1]) == "dump")
+        return dump(std::vector<std::string>(argv + 2, argv + argc));
     Files files = parse_command_line(argc, argv);
     aseba::flash::ProgramImage application, bootloader;
     try {
