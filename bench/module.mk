@@ -36,6 +36,9 @@ bench-node_LIBS := aseba_client $(BENCH_COMPILER_LIBS) aseba_vm
 PROGRAMS += avr-step-counter
 avr-step-counter_SOURCES := bench/avr_step_counter.c
 avr-step-counter_LDLIBS := -lsimavr
+# simavr's header and library come with the bench group, which `make` (whose
+# default goal builds this program) installs too.
+$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/obj/bench/avr_step_counter.o: | $(BENCH_DEPS_STAMP)))
 
 # `make cross-check` also prints the RAM of the e-puck firmware, measured on
 # a linked 16-bit image (bench/firmware_ram.sh; `make bench` gives its parts).

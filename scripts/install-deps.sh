@@ -6,7 +6,9 @@
 #   build  what `make` and `make run` need: compilers and the host tools'
 #          libraries (a small install)
 #   test   what `make test` adds: GoogleTest, and the reference Aseba that
-#          the tests use as an oracle (its GUI dependencies make it large)
+#          the tests use as an oracle (its GUI dependencies make it large),
+#          and whatever a test runs (QEMU, Chromium, mosquitto, matplotlib);
+#          `make test` also takes the dspic30 group, for the e-puck's images
 #   cross  the cross compilers of `make cross-check`
 #   fuzz   clang and libFuzzer for `make fuzz`
 #   bench  valgrind and the reference Aseba for `make bench`
@@ -31,7 +33,7 @@ declare -A groups=(
              libenki-dev libwebsocketpp-dev nodejs libmosquitto-dev"
     [test]="libgtest-dev python3 aseba libdashel-dev locales
             qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi chromium
-            mosquitto python3-paho-mqtt"
+            mosquitto python3-paho-mqtt python3-matplotlib"
     [cross]="gcc-avr avr-libc binutils-avr gcc-arm-none-eabi libnewlib-arm-none-eabi"
     [fuzz]="clang libclang-rt-14-dev libpugixml-dev nlohmann-json3-dev libasio-dev aseba"
     [bench]="chromium valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr

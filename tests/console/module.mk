@@ -26,4 +26,4 @@ $(foreach v,$(VARIANTS),$(eval \
 # `aseba flash` of the dsPIC30 application image that `make dspic30` links:
 # the test reads it, so the test program waits for it.
 EXTRA_CFLAGS_tests/console/flash_test := '-DDSPIC30_APPLICATION_IMAGE="$(DSPIC30_OUT)/epuck-aseba.hex"'
-$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/tests/console_test: $(DSPIC30_OUT)/epuck-aseba.hex))
+$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/tests/console_test: | $(DSPIC30_OUT)/epuck-aseba.hex))
