@@ -125,8 +125,8 @@ first compiled and uploaded (like load). Nodes do not have to confirm.)" },
       "usage: aseba flash IMAGE.hex [--node NODE]... [--no-reboot]",
       R"(Writes a firmware image (Microchip Intel HEX with the application descriptor,
 as `make dspic30` writes build/dspic30/epuck-aseba.hex) into every selected
-robot at once (default: all), through their Aseba bootloaders (protocol.md
-§6.9). The whole image is checked first (records that overlap, the
+robot at once (default: all), through their Aseba bootloaders (protocol 5's bootloader messages,
+bootloader/README.md). The whole image is checked first (records that overlap, the
 descriptor and its CRC): a robot is never rebooted for an image its
 bootloader would refuse. Each robot is sent REBOOT, its bootloader describes
 itself, every page is written and acknowledged, then BOOTLOADER_RESET starts
