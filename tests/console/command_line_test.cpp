@@ -182,3 +182,30 @@ TEST(CommandLines, AnEventLargerThanTheProtocolIsAUsageError)
         EXPECT_TRUE(contains(result.err, "--event")) << run.front() << ": " << result.err;
     }
 }
+
+// A target that is no target at all is bad usage (2); a target that cannot
+// be reached, and a port already taken, are the work failing (1).
+TEST(CommandLines, ATargetThatIsNoneIsUsageAndAPortInUseIsAFailure)
+{
+    ScratchFolder scratch;
+    CommandResult malformed = run_console({ "-t", "foo", "nodes" }, scratch.path());
+    EXPECT_EQ(malformed.exit_code, 2) << malformed.err;
+    EXPECT_TRUE(contains(malformed.err, "'foo' is none of")) << malformed.err;
+
+    Emulator first(1);
+    for (const std::vector<std::string> &arguments :
+         { std::vector<std::string>{
+             "--robots", "1", "--duration", "5", "--port", std::to_string(first.port()) },
+           std::vector<std::string>{ "--arena",
+                                     "default",
+                                     "--robots",
+                                     "1",
+                                     "--duration",
+                                     "5",
+                                     "--port",
+                                     std::to_string(first.port()) } }) {
+        CommandResult second = run_program("epuck-emu", arguments, scratch.path());
+        EXPECT_EQ(second.exit_code, 1) << second.err;
+        EXPECT_TRUE(contains(second.err, "Address already in use")) << second.err;
+    }
+}

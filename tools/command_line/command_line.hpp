@@ -25,8 +25,9 @@ constexpr int EXIT_USAGE = 2;  // a bad command line, or an input file that cann
 
 // The line every --help ends with.
 inline constexpr const char *EXIT_STATUS_TEXT =
-  "Exit status: 0 on success, 1 when the work fails (a compile error, a node or\n"
-  "the network), 2 on bad usage or an input file that cannot be read or used.";
+  "Exit status: 0 on success, 1 when the work fails (a compile error, a node, the\n"
+  "network, a port already in use), 2 on bad usage (a malformed option or target)\n"
+  "or an input file that cannot be read or used.";
 
 // Help as: usage lines, a blank line, the description, the options.
 class HelpFormatter : public CLI::Formatter

@@ -24,8 +24,16 @@ void on_interrupt(int)
 
 // Reads the command's input files before any network is touched: a file
 // that cannot be used is bad usage (status 2), whatever the network does.
+// What the command line names, checked before any connection: a target
+// that is no target at all is bad usage, as a missing file is.
 void check_input_files(const Options &options)
 {
+    for (const std::string &target : options.targets)
+        try {
+            client::parse_target(target);
+        } catch (const client::TransportError &error) {
+            throw UsageError(error.what());
+        }
     const std::string &command = options.command;
     bool program_argument = command == "load" || command == "compile" || command == "save";
     if (program_argument && !options.arguments.empty())

@@ -119,6 +119,19 @@ unsigned firmware_threads(const Options &options, size_t robots)
     std::exit(aseba::command_line::EXIT_USAGE);
 }
 
+// Opens a port: one that cannot be opened (in use, not allowed) is the work
+// failing, not bad usage, so exit status 1, as for every program here.
+template<typename Open>
+void open_port(Open open)
+{
+    try {
+        open();
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "epuck-emu: %s\n", error.what());
+        std::exit(aseba::command_line::EXIT_FAILED);
+    }
+}
+
 Options parse_options(int argc, char **argv)
 {
     Options options;
@@ -446,35 +459,27 @@ int run_arena(const Options &options,
     }
     aseba::arena::ArenaSimulation &simulation = *simulation_owner;
     aseba::host::Network &network = simulation.network();
-    try {
+    open_port([&] {
         network.listen(options.port, options.listen_address);
         listen_robot_ports(options,
                            network,
                            simulation.robot_count(),
                            [&](size_t i) -> hal_board & { return simulation.board(i); });
-    } catch (const std::exception &error) {
-        fail(error.what());
-    }
+    });
     std::unique_ptr<aseba::arena::ControlPort> control;
-    if (options.control_port != 0) {
-        try {
+    if (options.control_port != 0)
+        open_port([&] {
             control = std::make_unique<aseba::arena::ControlPort>(
               options.control_port, [&simulation](const std::string &line) {
                   return aseba::arena::run_control_command(simulation, line);
               });
-        } catch (const std::exception &error) {
-            fail(error.what());
-        }
-    }
+        });
     std::unique_ptr<aseba::arena::ArenaFeed> feed;
-    if (options.arena_feed != 0) {
-        try {
+    if (options.arena_feed != 0)
+        open_port([&] {
             feed = std::make_unique<aseba::arena::ArenaFeed>(
               arena, options.listen_address, options.arena_feed);
-        } catch (const std::exception &error) {
-            fail(error.what());
-        }
-    }
+        });
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
     MemoryFiles memories(options, simulation.robot_count(), [&](size_t i) -> host_robot & {
@@ -591,8 +596,8 @@ int main(int argc, char **argv)
 
     std::vector<std::unique_ptr<host_robot>> robots;
     aseba::host::Network network;
+    open_port([&] { network.listen(options.port, options.listen_address); });
     try {
-        network.listen(options.port, options.listen_address);
         auto prepare = memory_preparation(options);
         for (unsigned i = 0; i < options.robots; i++) {
             auto robot = std::make_unique<host_robot>();
@@ -601,12 +606,14 @@ int main(int argc, char **argv)
             aseba::host::power_on(*robot, prepare, bytecode);
             robots.push_back(std::move(robot));
         }
-        listen_robot_ports(options, network, robots.size(), [&](size_t i) -> hal_board & {
-            return robots[i]->board;
-        });
     } catch (const std::exception &error) {
         fail(error.what());
     }
+    open_port([&] {
+        listen_robot_ports(options, network, robots.size(), [&](size_t i) -> hal_board & {
+            return robots[i]->board;
+        });
+    });
     aseba::host::NetworkStatus status(program.definitions.events);
     network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
     MemoryFiles memories(
