@@ -90,6 +90,8 @@ TEST(MqttBridge, ReadOnlyPublishesEventsAndPresenceAndRefusesCommands)
     json reply = json::parse(watcher.payloads("aseba/network/a/node/1/reply").front());
     EXPECT_EQ(reply["ok"], false);
     EXPECT_NE(reply["error"].get<std::string>().find("read-only"), std::string::npos);
+    EXPECT_EQ(reply["command"], "stop"); // echoed, as docs/mqtt.md says every reply is
+    EXPECT_EQ(reply["request"], 3);
     EXPECT_TRUE(robots.network().execution_state({ 0, 1 }).running());
     EXPECT_EQ(robots.variable(1, "received"), 0); // its own ping does not come back
     EXPECT_EQ(robots.variable(2, "received"), 1); // robot 1's, on the network

@@ -300,6 +300,17 @@ void Bridge::handle_command(const TopicLayout::CommandAddress &address, const st
         return;
     std::string reply_topic = options_.topics.reply(address.network, address.node);
     Reply refusal;
+    // Read first, so that every reply echoes the command and its request
+    // (docs/mqtt.md), a read-only bridge's refusal too.
+    Command command;
+    std::optional<std::string> malformed;
+    try {
+        command = read_command(payload);
+        refusal.command = command_name(command.kind);
+        refusal.request = command.request;
+    } catch (const PayloadError &error) {
+        malformed = error.what();
+    }
     if (!options_.accept_commands) {
         ++counters_.commands_refused;
         refusal.error = "this bridge is read-only: it runs no command (start it with "
@@ -309,19 +320,14 @@ void Bridge::handle_command(const TopicLayout::CommandAddress &address, const st
         broker_->publish(reply_topic, write_reply(refusal), COMMAND_QOS, false);
         return;
     }
-    Command command;
-    try {
-        command = read_command(payload);
-    } catch (const PayloadError &error) {
+    if (malformed) {
         ++counters_.malformed;
-        refusal.error = error.what();
+        refusal.error = *malformed;
         log_problem(options_.topics.command(address.network, address.node) +
-                    ": refused: " + error.what());
+                    ": refused: " + *malformed);
         broker_->publish(reply_topic, write_reply(refusal), COMMAND_QOS, false);
         return;
     }
-    refusal.command = command_name(command.kind);
-    refusal.request = command.request;
     std::vector<NodeKey> keys;
     for (NodeKey key : network_->node_keys())
         if (key.target == *target && network_->node(key).described &&
