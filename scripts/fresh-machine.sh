@@ -69,7 +69,19 @@ if [ -n "$shared" ]; then
     chmod -R a-w "$root/work/shared"
 fi
 
+# The machine's network, as a user's machine has its own: its resolver, its
+# extra certificate authorities (a TLS proxy's, say) and the variables that
+# point programs at them or at a proxy. These are settings, not packages.
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+if [ -d /usr/local/share/ca-certificates ]; then
+    mkdir -p "$root/usr/local/share/ca-certificates"
+    cp -a /usr/local/share/ca-certificates/. "$root/usr/local/share/ca-certificates/"
+fi
+network_settings=()
+for name in http_proxy https_proxy no_proxy HTTP_PROXY HTTPS_PROXY NO_PROXY NODE_EXTRA_CA_CERTS \
+    SSL_CERT_FILE SSL_CERT_DIR REQUESTS_CA_BUNDLE CURL_CA_BUNDLE PIP_CERT GIT_SSL_CAINFO; do
+    [ -z "${!name:-}" ] || network_settings+=("$name=${!name}")
+done
 bind proc /proc -t proc
 bind sysfs /sys -t sysfs
 bind /dev /dev --bind
@@ -79,7 +91,7 @@ bind /var/cache/apt/archives /var/cache/apt/archives --bind
 
 echo "fresh-machine: running in a fresh Debian 12: $*"
 chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
-    LANG=C.UTF-8 CI="${CI:-}" DEBIAN_FRONTEND=noninteractive \
+    LANG=C.UTF-8 CI="${CI:-}" DEBIAN_FRONTEND=noninteractive "${network_settings[@]}" \
     bash -c 'set -euo pipefail
              cd /work/epuck-aseba
              apt-get update -q >/dev/null
