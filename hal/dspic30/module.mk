@@ -113,9 +113,10 @@ dspic30-toolchain: | $(DSPIC_TOOLCHAIN_STAMP)
 	    echo "  or give DSPIC_TOOLCHAIN=DIR, a pic30-elf GCC toolchain built from XC16's GPL sources" >&2; \
 	    echo "  (scripts/install-deps.sh dspic30 unpacks the project's into $(DSPIC_GPL_TOOLCHAIN))." >&2; \
 	    exit 1; }
-	@machine=$$($(DSPIC_GCC) -dumpmachine 2>/dev/null); case "$$machine" in pic30*) ;; *) \
+	@machine=$$($(DSPIC_GCC) -dumpmachine 2>/dev/null); case "$$machine" in pic30*|*xc16*) ;; *) \
+	    $(DSPIC_GCC) --version 2>/dev/null | grep -qi 'xc16' || { \
 	    echo "dspic30: $(DSPIC_GCC) compiles for '$$machine', not for the dsPIC30 (pic30): $(DSPIC_TOOLCHAIN_NAME) is not a dsPIC toolchain" >&2; \
-	    exit 1;; esac
+	    exit 1; };; esac
 
 $(DSPIC30_OUT)/obj/%.o: %.c | dspic30-toolchain
 	@mkdir -p $(@D)
