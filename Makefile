@@ -105,11 +105,14 @@ $(foreach v,$(VARIANTS),$(foreach p,$(PROGRAMS),$(eval $(call PROGRAM_RULES,$(v)
 $(foreach v,$(VARIANTS),$(foreach t,$(TESTS),$(eval $(call PROGRAM_RULES,$(v),$(t),tests))))
 
 # Tests and benchmark programs compile against GoogleTest and the
-# reference's headers and libraries.
+# reference's headers and libraries. Only their own files wait for those:
+# a product source that a test also compiles is built by `make run` too,
+# which must not install the test group.
+own_files = $(filter tests/% bench/%,$(1))
 $(foreach v,$(VARIANTS),$(foreach t,$(TESTS),\
-  $(eval $(call objects,$(v),$($(t)_SOURCES)) $(BUILD)/$(v)/tests/$(t): | $(TEST_DEPS_STAMP))))
+  $(eval $(call objects,$(v),$(call own_files,$($(t)_SOURCES))) $(BUILD)/$(v)/tests/$(t): | $(TEST_DEPS_STAMP))))
 $(foreach v,$(VARIANTS),$(foreach p,$(filter bench-%,$(PROGRAMS)),\
-  $(eval $(call objects,$(v),$($(p)_SOURCES)) $(BUILD)/$(v)/bin/$(p): | $(TEST_DEPS_STAMP))))
+  $(eval $(call objects,$(v),$(call own_files,$($(p)_SOURCES))) $(BUILD)/$(v)/bin/$(p): | $(TEST_DEPS_STAMP))))
 
 ALL_SOURCES := $(sort $(foreach x,$(LIBRARIES) $(PROGRAMS) $(TESTS),$($(x)_SOURCES)))
 -include $(patsubst %.o,%.d,$(foreach v,$(VARIANTS),$(call objects,$(v),$(ALL_SOURCES))))

@@ -48,7 +48,7 @@ endif
 stm32f4: $(STM32F4_IMAGE).elf $(STM32F4_IMAGE).hex
 	@arm-none-eabi-size $(STM32F4_IMAGE).elf
 
-$(STM32F4_OUT)/obj/%.o: %.c | $(DEPS_STAMP)
+$(STM32F4_OUT)/obj/%.o: %.c | $(DEPS_STAMP) $(CROSS_DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(STM32F4_CC) $(STM32F4_CFLAGS) -MMD -MP -c $< -o $@
 
@@ -64,7 +64,7 @@ $(STM32F4_IMAGE).hex: $(STM32F4_IMAGE).elf
 # driver included (no board links it yet); part of `make cross-check`.
 STM32F4_CHECK_SOURCES := $(wildcard hal/stm32f4/*.c)
 .PHONY: stm32f4-check
-stm32f4-check: | $(DEPS_STAMP)
+stm32f4-check: | $(DEPS_STAMP) $(CROSS_DEPS_STAMP)
 	@mkdir -p $(BUILD)/cross-stm32f4
 	@for source in $(STM32F4_CHECK_SOURCES); do \
 	    $(STM32F4_CC) $(STM32F4_CFLAGS) -c $$source \
