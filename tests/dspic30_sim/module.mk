@@ -15,3 +15,11 @@ dspic30_sim_disassembler_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
 EXTRA_CFLAGS_tests/dspic30_sim/pic30_toolchain := '-DPIC30_BIN="$(PIC30_BIN)"'
 $(BUILD)/host-sanitize/tests/dspic30_sim_disassembler_test \
 $(BUILD)/host/tests/dspic30_sim_disassembler_test: | $(PIC30_TOOLCHAIN)
+
+TESTS += dspic30_sim_semantics_test
+dspic30_sim_semantics_test_SOURCES := tests/dspic30_sim/semantics_test.cpp \
+                                      tests/dspic30_sim/pic30_toolchain.cpp
+dspic30_sim_semantics_test_LIBS := dspic30_sim
+dspic30_sim_semantics_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+$(BUILD)/host-sanitize/tests/dspic30_sim_semantics_test \
+$(BUILD)/host/tests/dspic30_sim_semantics_test: | $(PIC30_TOOLCHAIN)

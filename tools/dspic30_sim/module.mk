@@ -2,7 +2,18 @@
 # (docs/dspic30-sim.md): the instruction table (instructions.def), the
 # decoder and disassembler driven by it, and the executor.
 LIBRARIES += dspic30_sim
-dspic30_sim_SOURCES := tools/dspic30_sim/isa.cpp tools/dspic30_sim/disassembler.cpp
+dspic30_sim_SOURCES := tools/dspic30_sim/isa.cpp tools/dspic30_sim/disassembler.cpp \
+                       tools/dspic30_sim/predecode.cpp tools/dspic30_sim/program_memory.cpp \
+                       tools/dspic30_sim/cpu.cpp tools/dspic30_sim/cpu_memory.cpp \
+                       tools/dspic30_sim/cpu_execute.cpp tools/dspic30_sim/cpu_dsp.cpp \
+                       tools/dspic30_sim/cpu_exceptions.cpp tools/dspic30_sim/cpu_nvm.cpp \
+                       tools/dspic30_sim/uart.cpp tools/dspic30_sim/intel_hex.cpp \
+                       tools/dspic30_sim/simulator.cpp
+
+# dspic30-sim: runs an image, UART1 on standard input and output.
+PROGRAMS += dspic30-sim
+dspic30-sim_SOURCES := tools/dspic30_sim/dspic30_sim_main.cpp
+dspic30-sim_LIBS := dspic30_sim
 
 # Microchip's pic30-elf toolchain (binutils and GCC 4.5.1, built from XC16's
 # GPL sources), unpacked into the build folder: the tests' oracle
