@@ -2,10 +2,13 @@
 
 #include "tests/dspic30_sim/pic30_toolchain.hpp"
 
+#include "tools/dspic30_sim/intel_hex.hpp"
+
 #include <array>
 #include <cstdio>
 #include <fstream>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -59,6 +62,41 @@ void write_text_file(const std::string &path, const std::string &text)
     out << text;
     if (!out)
         throw std::runtime_error("cannot write " + path);
+}
+
+AssembledProgram assemble_program(const std::string &source, uint32_t base)
+{
+    ScratchFolder folder;
+    std::ostringstream script;
+    // No start-up files; RAM and EEPROM named as the linker wants them.
+    script << "OUTPUT_ARCH(\"30F6014A\")\n"
+           << "CRT0_STARTUP(none.o)\nCRT1_STARTUP(none.o)\nCRT_STARTMODE(crt_start_mode_off)\n"
+           << "MEMORY { data (a!xr) : ORIGIN = 0x800, LENGTH = 0x2000\n"
+           << "  program (xr) : ORIGIN = 0x" << std::hex << base << ", LENGTH = 0x"
+           << (0x17F00 - base) << "\n  eedata : ORIGIN = 0x7FF000, LENGTH = 0x1000 }\n"
+           << "SECTIONS { .text : { *(.text); } >program }\n";
+    write_text_file(folder.file("program.s"), source);
+    write_text_file(folder.file("program.gld"), script.str());
+    run_command(pic30_tool("as") + " -p30F6014A " + folder.file("program.s") + " -o " +
+                folder.file("program.o"));
+    run_command(pic30_tool("ld") + " --no-isr --no-ivt -T " + folder.file("program.gld") + " " +
+                folder.file("program.o") + " -o " + folder.file("program.elf") + " 2>&1");
+    run_command(pic30_tool("bin2hex") + " " + folder.file("program.elf"));
+    AssembledProgram program;
+    program.words = read_intel_hex_file(folder.file("program.hex"));
+    std::ifstream hex(folder.file("program.hex"));
+    std::ostringstream text;
+    text << hex.rdbuf();
+    program.hex = text.str();
+    std::istringstream symbols(run_command(pic30_tool("nm") + " " + folder.file("program.elf")));
+    std::string line;
+    while (std::getline(symbols, line)) {
+        std::istringstream fields(line);
+        std::string address, kind, name;
+        if (fields >> address >> kind >> name)
+            program.symbols[name] = static_cast<uint32_t>(std::stoul(address, nullptr, 16));
+    }
+    return program;
 }
 
 } // namespace aseba::dspic30::test

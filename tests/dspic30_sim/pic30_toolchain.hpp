@@ -4,7 +4,9 @@
 
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 
 namespace aseba::dspic30::test
@@ -42,5 +44,18 @@ class ScratchFolder
 
 // Writes `text` to `path`; throws std::runtime_error if it cannot.
 void write_text_file(const std::string &path, const std::string &text);
+
+// A program assembled and linked by the pic30-elf tools: its words by PC
+// address (as its Intel HEX gives them) and its symbols.
+struct AssembledProgram {
+    std::map<uint32_t, uint32_t> words;
+    std::map<std::string, uint32_t> symbols;
+    std::string hex; // the Intel HEX file pic30-elf-bin2hex wrote
+};
+
+// Assembles `source` (pic30-elf-as -p30F6014A), links its .text at PC
+// `base` and any other absolute sections where they say (no start-up
+// files), and reads the result back.
+AssembledProgram assemble_program(const std::string &source, uint32_t base);
 
 } // namespace aseba::dspic30::test

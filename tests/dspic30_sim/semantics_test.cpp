@@ -143,14 +143,10 @@ std::vector<std::string> labels_of(const Case &c)
     return labels;
 }
 
-struct Program {
-    std::map<uint32_t, uint32_t> words;
-    std::map<std::string, uint32_t> symbols;
-};
+using Program = test::AssembledProgram;
 
 Program build(const std::vector<Case> &cases)
 {
-    test::ScratchFolder folder;
     std::ostringstream source;
     source << "\t.text\n";
     for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -161,32 +157,7 @@ Program build(const std::vector<Case> &cases)
             source << "\t" << rename_labels(line, labels, i) << "\n";
         source << prefixed("end", i) << ":\n\tnop\n";
     }
-    // No start-up files, RAM and EEPROM named as the linker wants them.
-    const std::string script = "OUTPUT_ARCH(\"30F6014A\")\n"
-                               "CRT0_STARTUP(none.o)\nCRT1_STARTUP(none.o)\n"
-                               "CRT_STARTMODE(crt_start_mode_off)\n"
-                               "MEMORY { data (a!xr) : ORIGIN = 0x800, LENGTH = 0x2000\n"
-                               "  program (xr) : ORIGIN = 0x200, LENGTH = 0x17000\n"
-                               "  eedata : ORIGIN = 0x7FF000, LENGTH = 0x1000 }\n"
-                               "SECTIONS { .text : { *(.text); } >program }\n";
-    test::write_text_file(folder.file("cases.s"), source.str());
-    test::write_text_file(folder.file("cases.gld"), script);
-    test::run_command(test::pic30_tool("as") + " -p30F6014A " + folder.file("cases.s") + " -o " +
-                      folder.file("cases.o"));
-    test::run_command(test::pic30_tool("ld") + " --no-isr --no-ivt -T " + folder.file("cases.gld") +
-                      " " + folder.file("cases.o") + " -o " + folder.file("cases.elf") + " 2>&1");
-    test::run_command(test::pic30_tool("bin2hex") + " " + folder.file("cases.elf"));
-    Program program;
-    program.words = read_intel_hex_file(folder.file("cases.hex"));
-    std::istringstream symbols(
-      test::run_command(test::pic30_tool("nm") + " " + folder.file("cases.elf")));
-    std::string line;
-    while (std::getline(symbols, line)) {
-        const auto fields = words_of(line);
-        if (fields.size() == 3)
-            program.symbols[fields[2]] = static_cast<uint32_t>(std::stoul(fields[0], nullptr, 16));
-    }
-    return program;
+    return test::assemble_program(source.str(), cases_base);
 }
 
 // A value of the case file: hexadecimal, or a label of the case.

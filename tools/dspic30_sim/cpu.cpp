@@ -37,8 +37,8 @@ void Cpu::attach(uint16_t first, uint16_t last, Peripheral &peripheral)
 std::vector<uint32_t> Cpu::last_pcs() const
 {
     std::vector<uint32_t> pcs;
-    const uint32_t count = std::min<uint32_t>(history_next_, history_length);
-    for (uint32_t i = history_next_ - count; i != history_next_; ++i)
+    const uint64_t count = std::min<uint64_t>(instructions_, history_length);
+    for (uint64_t i = instructions_ - count; i != instructions_; ++i)
         pcs.push_back(history_[i % history_length]);
     return pcs;
 }

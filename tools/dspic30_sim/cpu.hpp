@@ -85,6 +85,12 @@ class Cpu
     {
         return cycles_;
     }
+    // The instructions executed since the CPU was made (each iteration of
+    // a REPEAT counts).
+    uint64_t instructions() const
+    {
+        return instructions_;
+    }
     // Called before each instruction while set (a trace); empty = none.
     void set_trace(std::function<void(const Cpu &)> trace)
     {
@@ -298,7 +304,7 @@ class Cpu
     bool stop_requested_ = false;
     uint32_t current_pc_ = 0; // the instruction being executed
     std::array<uint32_t, history_length> history_{};
-    uint32_t history_next_ = 0;
+    uint64_t instructions_ = 0; // also the next slot of history_
     std::function<void(const Cpu &)> trace_;
     std::function<void(const TrapRecord &)> trap_observer_;
 };

@@ -108,8 +108,12 @@ void Cpu::take_exception(int vector, int level)
     const uint16_t stacked = static_cast<uint16_t>(((sr_ & srl_bits) << 8) |
                                                    ((corcon_ & corcon::IPL3) ? stacked_ipl3 : 0) |
                                                    ((return_pc >> 16) & stacked_pc_high));
-    push_word(static_cast<uint16_t>(return_pc));
-    push_word(stacked);
+    // The frame itself is not checked against SPLIM: a stack error trap
+    // must be able to enter its handler (⚠ the manuals read do not say).
+    for (const uint16_t word : { static_cast<uint16_t>(return_pc), stacked }) {
+        write_word(w_[15], word);
+        w_[15] = static_cast<uint16_t>(w_[15] + 2);
+    }
     // The REPEAT in progress is suspended (RA is on the stack).
     sr_ = static_cast<uint16_t>(sr_ & ~sr::RA);
     watch_pc_ = (sr_ & sr::DA) ? doend_ : no_watch;

@@ -532,7 +532,7 @@ StopReason Cpu::run_loop(uint64_t cycle_limit)
         const Decoded &d = instruction_at(pc);
         if constexpr (traced)
             trace_(*this);
-        history_[history_next_++ % history_length] = pc;
+        history_[instructions_++ % history_length] = pc;
         cycles_ += d.cycles;
         uint32_t npc = pc + 2 * d.words;
         switch (d.op) {

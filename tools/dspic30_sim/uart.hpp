@@ -22,7 +22,9 @@ struct UartPorts {
     int tx_irq;
 };
 
-inline constexpr UartPorts uart1_ports{ sfr::U1MODE, 17, 18 };
+inline constexpr UartPorts uart1_ports{ sfr::U1MODE,
+                                        9,
+                                        10 }; // IRQs (vectors 17, 18; fact sheet §1.7)
 
 class Uart : public Peripheral
 {
