@@ -113,3 +113,11 @@ dspic30_sim_system_test_LIBS := dspic30_sim
 dspic30_sim_system_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
 $(BUILD)/host-sanitize/tests/dspic30_sim_system_test \
 $(BUILD)/host/tests/dspic30_sim_system_test: | $(PIC30_TOOLCHAIN)
+
+TESTS += dspic30_sim_program_test
+dspic30_sim_program_test_SOURCES := tests/dspic30_sim/program_test.cpp tests/dspic30_sim/pic30_toolchain.cpp
+dspic30_sim_program_test_LIBS := dspic30_sim
+dspic30_sim_program_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+EXTRA_CFLAGS_tests/dspic30_sim/program_test := '-DDSPIC30_SIM="$(BUILD)/host-sanitize/bin/dspic30-sim"'
+$(BUILD)/host-sanitize/tests/dspic30_sim_program_test \
+$(BUILD)/host/tests/dspic30_sim_program_test: | $(PIC30_TOOLCHAIN) $(BUILD)/host-sanitize/bin/dspic30-sim

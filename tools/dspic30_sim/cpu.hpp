@@ -45,8 +45,9 @@ struct TrapRecord {
     Trap trap;
     uint32_t pc; // the instruction that caused it (or was about to run)
     uint64_t cycle;
-    bool reset;        // a hard-trap conflict reset the chip
-    std::string cause; // in words: "word read at odd address 0x0803", ...
+    bool reset;            // a hard-trap conflict reset the chip
+    std::string cause;     // in words: "word read at odd address 0x0803", ...
+    std::string registers; // register_summary() when the cause was found
 };
 
 class Cpu
@@ -284,6 +285,7 @@ class Cpu
     int trap_resets_ = 0;
     uint64_t last_trap_reset_ = 0;
     std::string trap_cause_;
+    std::string trap_registers_;
     uint32_t trap_pc_ = 0;
     bool sleeping_ = false;
     uint64_t watchdog_at_ = never;

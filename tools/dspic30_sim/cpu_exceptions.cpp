@@ -89,6 +89,7 @@ void Cpu::raise_trap(Trap trap, std::string cause)
     if (trap_cause_.empty()) {
         trap_cause_ = std::move(cause);
         trap_pc_ = current_pc_;
+        trap_registers_ = register_summary();
     }
     if (hard_trap(trap) && cpu_priority() >= trap_level(trap)) {
         // A hard trap while one of at least its priority is being
@@ -197,7 +198,7 @@ void Cpu::power_on_reset()
 void Cpu::trap_reset(Trap trap)
 {
     if (trap_observer_)
-        trap_observer_(TrapRecord{ trap, trap_pc_, cycles_, true, trap_cause_ });
+        trap_observer_(TrapRecord{ trap, trap_pc_, cycles_, true, trap_cause_, trap_registers_ });
     trap_cause_.clear();
     trap_resets_ = (cycles_ - last_trap_reset_ < storm_window) ? trap_resets_ + 1 : 1;
     last_trap_reset_ = cycles_;
@@ -261,7 +262,8 @@ bool Cpu::service(uint64_t cycle_limit, StopReason &reason)
                 continue;
             trap_pending_ = static_cast<uint8_t>(trap_pending_ & ~(1u << t));
             if (trap_observer_)
-                trap_observer_(TrapRecord{ trap, trap_pc_, cycles_, false, trap_cause_ });
+                trap_observer_(
+                  TrapRecord{ trap, trap_pc_, cycles_, false, trap_cause_, trap_registers_ });
             trap_cause_.clear();
             take_exception(t, trap_level(trap));
             break;

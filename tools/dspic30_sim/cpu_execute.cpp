@@ -34,11 +34,20 @@ constexpr const Width &width(bool byte)
 
 } // namespace
 
+// Inlined into the dispatch loop: each case names its operation, so the
+// helpers' own switches fold away.
+#define SIM_INLINE [[gnu::always_inline]] inline
+
 // Flag rules and the small instruction helpers, with access to the CPU.
 struct Executor {
     // a + b + carry on the operation's width: C, DC, OV, N, and Z (or, for
     // the multi-precision forms, Z cleared on a non-zero result only).
-    static uint16_t add(Cpu &c, uint32_t a, uint32_t b, uint32_t carry, bool byte, bool sticky_z)
+    SIM_INLINE static uint16_t add(Cpu &c,
+                                   uint32_t a,
+                                   uint32_t b,
+                                   uint32_t carry,
+                                   bool byte,
+                                   bool sticky_z)
     {
         const Width &wd = width(byte);
         a &= wd.mask;
@@ -64,12 +73,17 @@ struct Executor {
     }
 
     // a - b - (1 - carry), as a + ~b + carry: C is NOT borrow.
-    static uint16_t sub(Cpu &c, uint32_t a, uint32_t b, uint32_t carry, bool byte, bool sticky_z)
+    SIM_INLINE static uint16_t sub(Cpu &c,
+                                   uint32_t a,
+                                   uint32_t b,
+                                   uint32_t carry,
+                                   bool byte,
+                                   bool sticky_z)
     {
         return add(c, a, ~b & width(byte).mask, carry, byte, sticky_z);
     }
 
-    static void set_nz(Cpu &c, uint32_t r, bool byte)
+    SIM_INLINE static void set_nz(Cpu &c, uint32_t r, bool byte)
     {
         const Width &wd = width(byte);
         uint16_t f = c.sr_ & static_cast<uint16_t>(~(sr::N | sr::Z));
@@ -80,17 +94,17 @@ struct Executor {
         c.sr_ = f;
     }
 
-    static void set_flag(Cpu &c, uint16_t flag, bool value)
+    SIM_INLINE static void set_flag(Cpu &c, uint16_t flag, bool value)
     {
         c.sr_ = value ? static_cast<uint16_t>(c.sr_ | flag) : static_cast<uint16_t>(c.sr_ & ~flag);
     }
 
-    static uint32_t carry(const Cpu &c)
+    SIM_INLINE static uint32_t carry(const Cpu &c)
     {
         return c.sr_ & sr::C;
     }
 
-    static bool condition(const Cpu &c, int code)
+    SIM_INLINE static bool condition(const Cpu &c, int code)
     {
         const bool C = c.sr_ & sr::C, Z = c.sr_ & sr::Z, N = c.sr_ & sr::N, OV = c.sr_ & sr::OV;
         switch (code) {
@@ -113,7 +127,7 @@ struct Executor {
     }
 
     // Shifts and rotates by one of the Ws,Wd and f forms.
-    static uint16_t shift_one(Cpu &c, Op op, uint16_t v, bool byte)
+    SIM_INLINE static uint16_t shift_one(Cpu &c, Op op, uint16_t v, bool byte)
     {
         const Width &wd = width(byte);
         const uint32_t x = v & wd.mask;
@@ -165,7 +179,7 @@ struct Executor {
     }
 
     // The one-operand arithmetic of INC..COM (Ws,Wd and f forms).
-    static uint16_t unary(Cpu &c, Op op, uint16_t v, bool byte)
+    SIM_INLINE static uint16_t unary(Cpu &c, Op op, uint16_t v, bool byte)
     {
         switch (op) {
         case Op::INC:
@@ -188,7 +202,7 @@ struct Executor {
 
     // The binary operations of the three-operand, literal and f forms:
     // `a` is Wb (or Wn, or f), `b` is Ws (or the literal, or WREG).
-    static uint16_t binary(Cpu &c, Op op, uint16_t a, uint16_t b, bool byte)
+    SIM_INLINE static uint16_t binary(Cpu &c, Op op, uint16_t a, uint16_t b, bool byte)
     {
         switch (op) {
         case Op::ADD:
@@ -241,18 +255,18 @@ struct Executor {
             c.write_word(ea, f(c.read_word(ea)));
     }
 
-    static uint16_t read_ws(Cpu &c, const Decoded &d, bool byte)
+    SIM_INLINE static uint16_t read_ws(Cpu &c, const Decoded &d, bool byte)
     {
         return c.read_operand(d.smode, d.ws, d.wb, byte);
     }
 
     // The value of an f operand, and where the result of an f{,WREG} form
     // goes.
-    static uint16_t read_f(Cpu &c, const Decoded &d)
+    SIM_INLINE static uint16_t read_f(Cpu &c, const Decoded &d)
     {
         return d.byte ? c.read_byte(d.lit) : c.read_word(d.lit);
     }
-    static void write_f_or_wreg(Cpu &c, const Decoded &d, uint16_t value)
+    SIM_INLINE static void write_f_or_wreg(Cpu &c, const Decoded &d, uint16_t value)
     {
         if (!d.aux)
             c.write_w(0, value, d.byte);
@@ -261,9 +275,42 @@ struct Executor {
         else
             c.write_word(d.lit, value);
     }
-    static uint16_t wreg(const Cpu &c, bool byte)
+    SIM_INLINE static uint16_t wreg(const Cpu &c, bool byte)
     {
         return byte ? static_cast<uint16_t>(c.w_[0] & 0xFF) : c.w_[0];
+    }
+
+    // The three-operand, literal and f forms of the binary operations.
+    template<Op op>
+    SIM_INLINE static void three_operand(Cpu &c, const Decoded &d)
+    {
+        const uint16_t a = d.byte ? static_cast<uint16_t>(c.w_[d.wb] & 0xFF) : c.w_[d.wb];
+        const uint16_t b = d.smode == AM_LITERAL ? d.lit : read_ws(c, d, d.byte);
+        c.write_operand(d.dmode, d.wd, 0, d.byte, binary(c, op, a, b, d.byte));
+    }
+    template<Op op>
+    SIM_INLINE static void literal_operand(Cpu &c, const Decoded &d)
+    {
+        const uint16_t a = d.byte ? static_cast<uint16_t>(c.w_[d.wd] & 0xFF) : c.w_[d.wd];
+        c.write_w(d.wd, binary(c, op, a, d.lit, d.byte), d.byte);
+    }
+    template<Op op>
+    SIM_INLINE static void file_operand(Cpu &c, const Decoded &d)
+    {
+        const uint16_t f = read_f(c, d);
+        write_f_or_wreg(c, d, binary(c, op, f, wreg(c, d.byte), d.byte));
+    }
+    template<Op op>
+    SIM_INLINE static void unary_ws(Cpu &c, const Decoded &d)
+    {
+        const uint16_t v = read_ws(c, d, d.byte);
+        c.write_operand(d.dmode, d.wd, 0, d.byte, unary(c, op, v, d.byte));
+    }
+    template<Op op>
+    SIM_INLINE static void shift_ws(Cpu &c, const Decoded &d)
+    {
+        const uint16_t v = read_ws(c, d, d.byte);
+        c.write_operand(d.dmode, d.wd, 0, d.byte, shift_one(c, op, v, d.byte));
     }
 
     static void push_return(Cpu &c, uint32_t return_pc)
@@ -529,7 +576,7 @@ StopReason Cpu::run_loop(uint64_t cycle_limit)
             cycles_ += 1;
             continue;
         }
-        const Decoded &d = instruction_at(pc);
+        const Decoded &d = code_[pc / 2].op != op_undecoded ? code_[pc / 2] : instruction_at(pc);
         if constexpr (traced)
             trace_(*this);
         history_[instructions_++ % history_length] = pc;
@@ -596,20 +643,15 @@ StopReason Cpu::run_loop(uint64_t cycle_limit)
             break;
 
         // --- three-operand arithmetic and logic ------------------------------
-        case Op::SUBR:
-        case Op::SUBBR:
-        case Op::ADD:
-        case Op::ADDC:
-        case Op::SUB:
-        case Op::SUBB:
-        case Op::AND:
-        case Op::XOR:
-        case Op::IOR: {
-            const uint16_t a = d.byte ? static_cast<uint16_t>(w_[d.wb] & 0xFF) : w_[d.wb];
-            const uint16_t b = d.smode == AM_LITERAL ? d.lit : E::read_ws(*this, d, d.byte);
-            write_operand(d.dmode, d.wd, 0, d.byte, E::binary(*this, d.op, a, b, d.byte));
-            break;
-        }
+        case Op::SUBR: E::three_operand<Op::SUBR>(*this, d); break;
+        case Op::SUBBR: E::three_operand<Op::SUBBR>(*this, d); break;
+        case Op::ADD: E::three_operand<Op::ADD>(*this, d); break;
+        case Op::ADDC: E::three_operand<Op::ADDC>(*this, d); break;
+        case Op::SUB: E::three_operand<Op::SUB>(*this, d); break;
+        case Op::SUBB: E::three_operand<Op::SUBB>(*this, d); break;
+        case Op::AND: E::three_operand<Op::AND>(*this, d); break;
+        case Op::XOR: E::three_operand<Op::XOR>(*this, d); break;
+        case Op::IOR: E::three_operand<Op::IOR>(*this, d); break;
 
         // --- moves -----------------------------------------------------------
         case Op::MOV_LIT16: w_[d.wd] = d.lit; break;
@@ -759,30 +801,22 @@ StopReason Cpu::run_loop(uint64_t cycle_limit)
         }
 
         // --- literal and file-register arithmetic ----------------------------
-        case Op::ADD_LIT:
-        case Op::ADDC_LIT:
-        case Op::SUB_LIT:
-        case Op::SUBB_LIT:
-        case Op::AND_LIT:
-        case Op::XOR_LIT:
-        case Op::IOR_LIT: {
-            const uint16_t a = d.byte ? static_cast<uint16_t>(w_[d.wd] & 0xFF) : w_[d.wd];
-            write_w(d.wd, E::binary(*this, d.op, a, d.lit, d.byte), d.byte);
-            break;
-        }
-        case Op::ADD_F:
-        case Op::ADDC_F:
-        case Op::SUB_F:
-        case Op::SUBB_F:
-        case Op::AND_F:
-        case Op::XOR_F:
-        case Op::IOR_F:
-        case Op::SUBR_F:
-        case Op::SUBBR_F: {
-            const uint16_t f = E::read_f(*this, d);
-            E::write_f_or_wreg(*this, d, E::binary(*this, d.op, f, E::wreg(*this, d.byte), d.byte));
-            break;
-        }
+        case Op::ADD_LIT: E::literal_operand<Op::ADD_LIT>(*this, d); break;
+        case Op::ADDC_LIT: E::literal_operand<Op::ADDC_LIT>(*this, d); break;
+        case Op::SUB_LIT: E::literal_operand<Op::SUB_LIT>(*this, d); break;
+        case Op::SUBB_LIT: E::literal_operand<Op::SUBB_LIT>(*this, d); break;
+        case Op::AND_LIT: E::literal_operand<Op::AND_LIT>(*this, d); break;
+        case Op::XOR_LIT: E::literal_operand<Op::XOR_LIT>(*this, d); break;
+        case Op::IOR_LIT: E::literal_operand<Op::IOR_LIT>(*this, d); break;
+        case Op::ADD_F: E::file_operand<Op::ADD_F>(*this, d); break;
+        case Op::ADDC_F: E::file_operand<Op::ADDC_F>(*this, d); break;
+        case Op::SUB_F: E::file_operand<Op::SUB_F>(*this, d); break;
+        case Op::SUBB_F: E::file_operand<Op::SUBB_F>(*this, d); break;
+        case Op::AND_F: E::file_operand<Op::AND_F>(*this, d); break;
+        case Op::XOR_F: E::file_operand<Op::XOR_F>(*this, d); break;
+        case Op::IOR_F: E::file_operand<Op::IOR_F>(*this, d); break;
+        case Op::SUBR_F: E::file_operand<Op::SUBR_F>(*this, d); break;
+        case Op::SUBBR_F: E::file_operand<Op::SUBBR_F>(*this, d); break;
         case Op::INC_F:
         case Op::INC2_F:
         case Op::DEC_F:
@@ -834,17 +868,13 @@ StopReason Cpu::run_loop(uint64_t cycle_limit)
         }
 
         // --- shifts and rotates ----------------------------------------------
-        case Op::SL:
-        case Op::LSR:
-        case Op::ASR:
-        case Op::RLNC:
-        case Op::RLC:
-        case Op::RRNC:
-        case Op::RRC: {
-            const uint16_t v = E::read_ws(*this, d, d.byte);
-            write_operand(d.dmode, d.wd, 0, d.byte, E::shift_one(*this, d.op, v, d.byte));
-            break;
-        }
+        case Op::SL: E::shift_ws<Op::SL>(*this, d); break;
+        case Op::LSR: E::shift_ws<Op::LSR>(*this, d); break;
+        case Op::ASR: E::shift_ws<Op::ASR>(*this, d); break;
+        case Op::RLNC: E::shift_ws<Op::RLNC>(*this, d); break;
+        case Op::RLC: E::shift_ws<Op::RLC>(*this, d); break;
+        case Op::RRNC: E::shift_ws<Op::RRNC>(*this, d); break;
+        case Op::RRC: E::shift_ws<Op::RRC>(*this, d); break;
         case Op::SL_SHIFT:
         case Op::LSR_SHIFT:
         case Op::ASR_SHIFT: {
@@ -915,16 +945,12 @@ StopReason Cpu::run_loop(uint64_t cycle_limit)
         }
 
         // --- one-operand arithmetic -----------------------------------------------
-        case Op::INC:
-        case Op::INC2:
-        case Op::DEC:
-        case Op::DEC2:
-        case Op::NEG:
-        case Op::COM: {
-            const uint16_t v = E::read_ws(*this, d, d.byte);
-            write_operand(d.dmode, d.wd, 0, d.byte, E::unary(*this, d.op, v, d.byte));
-            break;
-        }
+        case Op::INC: E::unary_ws<Op::INC>(*this, d); break;
+        case Op::INC2: E::unary_ws<Op::INC2>(*this, d); break;
+        case Op::DEC: E::unary_ws<Op::DEC>(*this, d); break;
+        case Op::DEC2: E::unary_ws<Op::DEC2>(*this, d); break;
+        case Op::NEG: E::unary_ws<Op::NEG>(*this, d); break;
+        case Op::COM: E::unary_ws<Op::COM>(*this, d); break;
         case Op::CLR: write_operand(d.dmode, d.wd, 0, d.byte, 0); break;
         case Op::SETM: write_operand(d.dmode, d.wd, 0, d.byte, 0xFFFF); break;
         case Op::DAW_B: E::decimal_adjust(*this, d.ws); break;

@@ -17,7 +17,7 @@ inline bool ram_access(uint16_t ea, int size)
     return offset < ram_size && (size == 1 || (ea & 1) == 0);
 }
 
-inline uint16_t Cpu::read_word(uint16_t ea)
+[[gnu::always_inline]] inline uint16_t Cpu::read_word(uint16_t ea)
 {
     if (ram_access(ea, 2)) {
         const uint16_t i = static_cast<uint16_t>(ea - ram_start);
@@ -26,14 +26,14 @@ inline uint16_t Cpu::read_word(uint16_t ea)
     return read_slow(ea, false);
 }
 
-inline uint8_t Cpu::read_byte(uint16_t ea)
+[[gnu::always_inline]] inline uint8_t Cpu::read_byte(uint16_t ea)
 {
     if (ram_access(ea, 1))
         return ram_[static_cast<uint16_t>(ea - ram_start)];
     return static_cast<uint8_t>(read_slow(ea, true));
 }
 
-inline void Cpu::write_word(uint16_t ea, uint16_t value)
+[[gnu::always_inline]] inline void Cpu::write_word(uint16_t ea, uint16_t value)
 {
     if (ram_access(ea, 2)) {
         const uint16_t i = static_cast<uint16_t>(ea - ram_start);
@@ -44,7 +44,7 @@ inline void Cpu::write_word(uint16_t ea, uint16_t value)
     write_slow(ea, value, false);
 }
 
-inline void Cpu::write_byte(uint16_t ea, uint8_t value)
+[[gnu::always_inline]] inline void Cpu::write_byte(uint16_t ea, uint8_t value)
 {
     if (ram_access(ea, 1)) {
         ram_[static_cast<uint16_t>(ea - ram_start)] = value;
@@ -55,13 +55,13 @@ inline void Cpu::write_byte(uint16_t ea, uint8_t value)
 
 // The stack limit check of every W15-based effective address (DS70157
 // §4.7.3): below RAM always, above SPLIM once SPLIM has been written.
-inline void Cpu::check_stack_ea(uint16_t ea)
+[[gnu::always_inline]] inline void Cpu::check_stack_ea(uint16_t ea)
 {
     if (ea < ram_start || (splim_written_ && ea > splim_))
         stack_error(ea);
 }
 
-inline uint16_t Cpu::ea_modify(int mode, int reg, int size, bool write_side)
+[[gnu::always_inline]] inline uint16_t Cpu::ea_modify(int mode, int reg, int size, bool write_side)
 {
     uint16_t &r = w_[reg];
     const uint16_t old = r;
@@ -86,7 +86,7 @@ inline uint16_t Cpu::ea_modify(int mode, int reg, int size, bool write_side)
     return ea;
 }
 
-inline uint16_t Cpu::read_operand(int mode, int reg, int wb, bool byte)
+[[gnu::always_inline]] inline uint16_t Cpu::read_operand(int mode, int reg, int wb, bool byte)
 {
     if (mode == AM_DIRECT)
         return byte ? static_cast<uint16_t>(w_[reg] & 0xFF) : w_[reg];
@@ -101,7 +101,11 @@ inline uint16_t Cpu::read_operand(int mode, int reg, int wb, bool byte)
     return byte ? read_byte(ea) : read_word(ea);
 }
 
-inline void Cpu::write_operand(int mode, int reg, int wb, bool byte, uint16_t value)
+[[gnu::always_inline]] inline void Cpu::write_operand(int mode,
+                                                      int reg,
+                                                      int wb,
+                                                      bool byte,
+                                                      uint16_t value)
 {
     if (mode == AM_DIRECT) {
         write_w(reg, value, byte);
@@ -121,7 +125,7 @@ inline void Cpu::write_operand(int mode, int reg, int wb, bool byte, uint16_t va
         write_word(ea, value);
 }
 
-inline void Cpu::push_word(uint16_t value)
+[[gnu::always_inline]] inline void Cpu::push_word(uint16_t value)
 {
     const uint16_t ea = w_[15];
     check_stack_ea(ea);
@@ -129,7 +133,7 @@ inline void Cpu::push_word(uint16_t value)
     w_[15] = static_cast<uint16_t>(ea + 2);
 }
 
-inline uint16_t Cpu::pop_word()
+[[gnu::always_inline]] inline uint16_t Cpu::pop_word()
 {
     const uint16_t ea = static_cast<uint16_t>(w_[15] - 2);
     w_[15] = ea;

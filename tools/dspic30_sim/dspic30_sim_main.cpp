@@ -151,7 +151,9 @@ void report(Cpu &cpu, const RunResult &result)
                       << t.cycle << (t.cause.empty() ? "" : ": " + t.cause)
                       << (t.reset ? " (the chip reset)" : "") << "\n";
     }
-    std::cerr << "  registers: " << cpu.register_summary() << "\n";
+    if (!result.traps.empty())
+        std::cerr << "  registers at the first trap: " << result.traps.front().registers << "\n";
+    std::cerr << "  registers now: " << cpu.register_summary() << "\n";
     if (result.outcome == Outcome::illegal_instruction)
         std::cerr << "  at " << hex(cpu.pc(), 6) << ": " << instruction_text(cpu, cpu.pc()) << "\n";
     std::cerr << "  last instructions:\n";
