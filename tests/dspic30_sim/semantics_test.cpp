@@ -179,6 +179,7 @@ struct Named {
 constexpr Named data_registers[] = {
     { "RCOUNT", sfr::RCOUNT }, { "DCOUNT", sfr::DCOUNT }, { "TBLPAG", sfr::TBLPAG },
     { "PSVPAG", sfr::PSVPAG }, { "SPLIM", sfr::SPLIM },   { "INTCON1", sfr::INTCON1 },
+    { "RCON", sfr::RCON },
 };
 
 uint16_t address_of(const std::string &name)
