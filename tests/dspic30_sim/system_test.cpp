@@ -626,5 +626,63 @@ rx:     mov 0x0212, w8
     EXPECT_TRUE(m.data(sfr::RCON) & rcon::SLEEP);
 }
 
+// Fact sheet §2.2: a timer counts the instruction clock through its
+// prescaler and on reaching PRx restarts from 0 with its flag set: T1 with
+// PR1 = 99 at 1:1 interrupts every 100 cycles (⚠ PR + 1 counts per period,
+// fact sheet).
+TEST(Timers, PeriodicInterrupt)
+{
+    Machine m(R"(
+start:  mov #99, w0
+        mov w0, 0x0102          ; PR1
+        mov #0x0008, w0
+        mov w0, 0x008C          ; T1IE
+        mov #0x8000, w0
+        mov w0, 0x0104          ; T1CON: TON, 1:1
+on:     mov #1000, w1
+wait:   dec w1, w1
+        bra nz, wait
+off:    clr 0x0104
+done:   bra done
+t1:     inc w5, w5
+        bclr 0x0084, #3
+        retfie
+)");
+    m.vector(t1_vector, "t1");
+    ASSERT_TRUE(m.run_to("on"));
+    const uint64_t on = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("off"));
+    const uint64_t counted = m.cpu().cycles() - on;
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_NEAR(m.cpu().w(5), static_cast<double>(counted / 100), 1.0) << counted << " cycles";
+}
+
+// Fact sheet §2.2: timers 2 and 3 as one 32-bit timer (T2CON.T32); reading
+// TMR2 latches TMR3 into TMR3HLD; the match flag is T3's.
+TEST(Timers, ThirtyTwoBitPair)
+{
+    Machine m(R"(
+start:  mov #0xFFF0, w0
+        mov w0, 0x0106          ; TMR2 (TMR3HLD = 0: TMR3 = 0)
+        mov #0x0001, w0
+        mov w0, 0x010E          ; PR3:PR2 = 0x0001FFFF
+        setm 0x010C
+        mov #0x8008, w0
+        mov w0, 0x0110          ; T2CON: TON, T32
+        repeat #99
+        nop
+        mov 0x0106, w2          ; TMR2, latching TMR3
+        mov 0x0108, w3          ; TMR3HLD
+        mov 0x0084, w4          ; IFS0: no match yet
+done:   bra done
+)");
+    ASSERT_TRUE(m.run_to("done"));
+    // 0xFFF0 plus about 100 counts carried into the high word.
+    EXPECT_EQ(m.cpu().w(3), 1);
+    EXPECT_GT(m.cpu().w(2), 0x0040);
+    EXPECT_LT(m.cpu().w(2), 0x0060);
+    EXPECT_EQ(m.cpu().w(4) & 0x00C0, 0);
+}
+
 } // namespace
 } // namespace aseba::dspic30

@@ -1,4 +1,4 @@
-// A dsPIC30F6014A with UART1 on host byte streams, as dspic30-sim and the
+// A dsPIC30F6014A with UART1 on host byte streams and timers 1-5, as dspic30-sim and the
 // tests run it: load an image, run it from reset under a cycle limit and a
 // wall-clock watchdog, and stop at the line a test program prints at its end
 // ("EXIT n" or "ABORT", the convention of ../shared/vectors/gcc-torture).
@@ -6,6 +6,7 @@
 #pragma once
 
 #include "tools/dspic30_sim/cpu.hpp"
+#include "tools/dspic30_sim/timers.hpp"
 #include "tools/dspic30_sim/uart.hpp"
 
 #include <cstdint>
@@ -72,6 +73,7 @@ class Simulator
 
     Cpu cpu_;
     Uart uart1_;
+    Timers timers_;
     std::function<void(uint8_t)> output_;
     std::string line_;
     bool watching_exit_ = false;
