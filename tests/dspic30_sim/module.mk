@@ -64,6 +64,8 @@ $(TORTURE_OUT)/%.hex: $(TORTURE_OUT)/%.o $(TORTURE_SUPPORT) $(TORTURE_SCRIPT)
 	@$(call PIC30_LINK,$(@:.hex=.elf),$(TORTURE_SUPPORT) $<)
 	@$(PIC30_BIN)/pic30-elf-bin2hex $(@:.hex=.elf)
 .PRECIOUS: $(TORTURE_OUT)/%.o
+# Kept, so that a later make does not rebuild them and relink every image.
+.SECONDARY: $(TORTURE_SUPPORT)
 
 TESTS += dspic30_sim_torture_test
 dspic30_sim_torture_test_SOURCES := tests/dspic30_sim/torture_test.cpp
