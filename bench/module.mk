@@ -67,3 +67,24 @@ bench-mqtt_SOURCES := bench/mqtt_bench.cpp tests/mqtt/mqtt_support.cpp \
 bench-mqtt_LIBS := aseba_mqtt aseba_client aseba_compiler aseba_node
 $(foreach v,$(VARIANTS),$(eval \
   $(BUILD)/$(v)/bin/bench-mqtt: | $(BUILD)/$(v)/bin/epuck-emu $(BUILD)/$(v)/bin/aseba-mqtt))
+
+# The dsPIC30F simulator's speed (tools/dspic30_sim): bench/dspic30_workload.c
+# built for the dsPIC30F6014A with the pic30-elf toolchain and the bare
+# programs' start-up of tests/dspic30_sim (tests/dspic30_sim/module.mk).
+DSPIC30_BENCH_OUT := $(BUILD)/dspic30_sim/bench
+DSPIC30_WORKLOAD := $(DSPIC30_BENCH_OUT)/dspic30_workload.hex
+DSPIC30_BENCH_SUPPORT := $(BUILD)/dspic30_sim/torture/support/torture_crt0.o \
+                         $(BUILD)/dspic30_sim/torture/support/torture_helpers.o
+$(DSPIC30_WORKLOAD): bench/dspic30_workload.c $(DSPIC30_BENCH_SUPPORT) \
+                     tests/dspic30_sim/runtime/torture_p30f6014a.gld
+	@mkdir -p $(@D)
+	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) -std=gnu99 -ffreestanding $(PIC30_GCC_INCLUDES) -c $< \
+	    -o $(@:.hex=.o)
+	$(call PIC30_LINK,$(@:.hex=.elf),$(DSPIC30_BENCH_SUPPORT) $(@:.hex=.o))
+	$(PIC30_BIN)/pic30-elf-bin2hex $(@:.hex=.elf)
+
+PROGRAMS += bench-dspic30-sim
+bench-dspic30-sim_SOURCES := bench/dspic30_sim_bench.cpp
+bench-dspic30-sim_LIBS := dspic30_sim
+EXTRA_CFLAGS_bench/dspic30_sim_bench := '-DDSPIC30_WORKLOAD="$(DSPIC30_WORKLOAD)"'
+$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/bin/bench-dspic30-sim: | $(DSPIC30_WORKLOAD)))

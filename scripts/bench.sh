@@ -22,6 +22,7 @@ ram_goal_bytes=4096 # the paper's RAM for the e-puck firmware
 echo "bench: building" >&2
 make --no-print-directory BUILD="$build" "$bin/bench-vm" "$bin/bench-vm-switch" \
     "$bin/avr-step-counter" "$bin/bench-compiler" "$bin/bench-node" "$bin/bench-dsp" \
+    "$bin/bench-dspic30-sim" \
     "$bin/epuck-emu" >&2
 
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b + 0 == 0) print "-"; else printf "%.2f", a / b }'; }
@@ -172,6 +173,11 @@ read -r sim_many sim_many_cpu sim_many_wall < <("$bin/bench-node" simulator \
 robots_per_core=$(awk -v c="$sim_many" 'BEGIN { printf "%.0f", 1 / c }')
 
 # --- simulated arena ---------------------------------------------------------
+# The dsPIC30F simulator on a compiled workload: simulated instructions per
+# second of one core's CPU time (bench/dspic30_sim_bench.cpp).
+echo "bench: dsPIC30F simulator" >&2
+dspic30_sim_mips=$("$bin/bench-dspic30-sim" 1000000000 | awk '{ print $2 }')
+
 echo "bench: arena" >&2
 arena_goal_factor=10      # at 100 robots, every run (issues 7 and 17)
 arena_goal_factor_many=0.5 # at 1000 robots (issue 17)
@@ -295,6 +301,7 @@ table=$(
     echo "| arena: real-time factor, default arena, 1000 robots running the paper annex (2 simulated s, $arena_1000_threads threads), lowest–highest of $arena_runs runs; simulated s per processor s | ${arena_1000_low}–${arena_1000_high}×; ${arena_1000_cpu_low}–${arena_1000_cpu_high}× | - | - | ≥ ${arena_goal_factor_many}× |"
     echo "| STM32F4 image (make stm32f4, QEMU board, -O2): code / constant data / RAM, bytes | $stm32f4_code / $stm32f4_constant / $stm32f4_ram | - | - | |"
     echo "| VM on the Cortex-M4 (QEMU -icount): instructions per bytecode step, computed goto | $stm32f4_per_step | - | - | |"
+    echo "| dsPIC30F simulator (tools/dspic30_sim): million simulated instructions per second of one core, bench/dspic30_workload.c | $dspic30_sim_mips | - | - | ≥ 100 |"
 )
 
 dspic_table=$(

@@ -32,14 +32,16 @@ declare -A sources=(
     [formats]="$compiler_sources tests/fuzz/formats_fuzzer.cpp"
     [command_line]="$client_sources tools/console/options.cpp tests/fuzz/command_line_fuzzer.cpp"
     [ide]="$client_sources tools/ide/requests.cpp tests/fuzz/ide_requests_fuzzer.cpp"
+    [dspic30_sim]="$(library dspic30_sim) tests/fuzz/dspic30_sim_fuzzer.cpp"
 )
 # The compiler reads projects with pugixml; the client's links use asio,
 # whose resolver runs a thread.
 declare -A link_flags=([vm]="" [node]="-lasebacommon" [compiler]="-lpugixml"
                        [client]="-lpugixml -pthread" [files]="" [formats]="-lpugixml"
-                       [command_line]="-lpugixml -pthread" [ide]="-lpugixml -pthread")
+                       [command_line]="-lpugixml -pthread" [ide]="-lpugixml -pthread"
+                       [dspic30_sim]="")
 declare -A max_length=([vm]=1024 [node]=4096 [compiler]=1048576 [client]=4096 [files]=8192
-                       [formats]=8192 [command_line]=512 [ide]=4096)
+                       [formats]=8192 [command_line]=512 [ide]=4096 [dspic30_sim]=4096)
 # Folders of real inputs a target starts from, besides its own corpus.
 declare -A seeds=([compiler]="examples tests/compiler/programs"
                   [files]="tests/bootloader/hex tests/arena/data"
@@ -47,7 +49,7 @@ declare -A seeds=([compiler]="examples tests/compiler/programs"
                   [ide]="tests/ide_server/data")
 
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files formats command_line ide)
+[ ${#targets[@]} -gt 0 ] || targets=(vm node compiler client files formats command_line ide dspic30_sim)
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba

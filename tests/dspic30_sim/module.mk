@@ -1,0 +1,125 @@
+# Tests of the dsPIC30F simulator (tools/dspic30_sim), against independent
+# oracles: Microchip's disassembler for the decoder and disassembler.
+# The pic30-elf toolchain that tools/dspic30_sim/module.mk unpacks (this
+# file is read before it).
+PIC30_BIN ?= $(BUILD)/toolchains/pic30-elf/bin
+PIC30_TOOLCHAIN ?= $(PIC30_BIN)/pic30-elf-gcc
+
+DSPIC30_SIM_TEST_LDLIBS := -lgtest -lgtest_main -pthread
+
+TESTS += dspic30_sim_disassembler_test
+dspic30_sim_disassembler_test_SOURCES := tests/dspic30_sim/disassembler_test.cpp \
+                                         tests/dspic30_sim/pic30_toolchain.cpp
+dspic30_sim_disassembler_test_LIBS := dspic30_sim
+dspic30_sim_disassembler_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+EXTRA_CFLAGS_tests/dspic30_sim/pic30_toolchain := '-DPIC30_BIN="$(PIC30_BIN)"'
+$(BUILD)/host-sanitize/tests/dspic30_sim_disassembler_test \
+$(BUILD)/host/tests/dspic30_sim_disassembler_test: | $(PIC30_TOOLCHAIN)
+
+TESTS += dspic30_sim_semantics_test
+dspic30_sim_semantics_test_SOURCES := tests/dspic30_sim/semantics_test.cpp \
+                                      tests/dspic30_sim/pic30_toolchain.cpp
+dspic30_sim_semantics_test_LIBS := dspic30_sim
+dspic30_sim_semantics_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+$(BUILD)/host-sanitize/tests/dspic30_sim_semantics_test \
+$(BUILD)/host/tests/dspic30_sim_semantics_test: | $(PIC30_TOOLCHAIN)
+
+# --- the GCC torture corpus ----------------------------------------------------
+# ../shared/vectors/gcc-torture: 818 C tests of GCC's execution suite, each
+# built here into a HEX image at build time (make builds only what changed),
+# with the test-only start-up, linker script and 32-bit helpers of
+# tests/dspic30_sim/runtime. The toolchain's compiler does not search its own
+# lib/gcc include folders (stddef.h, limits.h, ...): they are named here.
+TORTURE_SOURCE := ../shared/vectors/gcc-torture
+TORTURE_OUT := $(BUILD)/dspic30_sim/torture
+TORTURE_RUNTIME := tests/dspic30_sim/runtime
+TORTURE_SCRIPT := $(TORTURE_RUNTIME)/torture_p30f6014a.gld
+TORTURE_NAMES := $(sort $(notdir $(basename $(wildcard $(TORTURE_SOURCE)/tests/*.c))))
+TORTURE_IMAGES := $(patsubst %,$(TORTURE_OUT)/%.hex,$(TORTURE_NAMES))
+PIC30_GCC_INCLUDES = -isystem $(PIC30_BIN)/../lib/gcc/pic30-elf/4.5.1/include \
+                     -isystem $(PIC30_BIN)/../lib/gcc/pic30-elf/4.5.1/include-fixed
+PIC30_CFLAGS := -mcpu=30F6014A -Os
+TORTURE_SUPPORT := $(TORTURE_OUT)/support/torture_crt0.o $(TORTURE_OUT)/support/uart_exit.o \
+                   $(TORTURE_OUT)/support/libc.o $(TORTURE_OUT)/support/torture_helpers.o
+# Links a bare program: $(1) = output .elf, $(2) = objects (the start-up first).
+define PIC30_LINK
+$(PIC30_BIN)/pic30-elf-gcc -nostartfiles -nostdlib -T $(TORTURE_SCRIPT) $(2) \
+    -Wl,--no-pack-data,--no-isr,--no-ivt -o $(1)
+endef
+
+$(TORTURE_OUT)/support/torture_crt0.o: $(TORTURE_RUNTIME)/torture_crt0.s | $(PIC30_TOOLCHAIN)
+	@mkdir -p $(@D)
+	$(PIC30_BIN)/pic30-elf-gcc -mcpu=30F6014A -c $< -o $@
+$(TORTURE_OUT)/support/torture_helpers.o: $(TORTURE_RUNTIME)/torture_helpers.c | $(PIC30_TOOLCHAIN)
+	@mkdir -p $(@D)
+	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) $(PIC30_GCC_INCLUDES) -c $< -o $@
+$(TORTURE_OUT)/support/%.o: $(TORTURE_SOURCE)/support/%.c | $(PIC30_TOOLCHAIN)
+	@mkdir -p $(@D)
+	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) $(PIC30_GCC_INCLUDES) -c $< -o $@
+$(TORTURE_OUT)/%.o: $(TORTURE_SOURCE)/tests/%.c | $(PIC30_TOOLCHAIN)
+	@mkdir -p $(@D)
+	@$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) -w $(PIC30_GCC_INCLUDES) \
+	    -I$(TORTURE_SOURCE)/support/include -Dmain=torture_main -c $< -o $@
+$(TORTURE_OUT)/%.hex: $(TORTURE_OUT)/%.o $(TORTURE_SUPPORT) $(TORTURE_SCRIPT)
+	@$(call PIC30_LINK,$(@:.hex=.elf),$(TORTURE_SUPPORT) $<)
+	@$(PIC30_BIN)/pic30-elf-bin2hex $(@:.hex=.elf)
+.PRECIOUS: $(TORTURE_OUT)/%.o
+# Kept, so that a later make does not rebuild them and relink every image.
+.SECONDARY: $(TORTURE_SUPPORT)
+
+TESTS += dspic30_sim_torture_test
+dspic30_sim_torture_test_SOURCES := tests/dspic30_sim/torture_test.cpp
+dspic30_sim_torture_test_LIBS := dspic30_sim
+dspic30_sim_torture_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+EXTRA_CFLAGS_tests/dspic30_sim/torture_test := '-DTORTURE_MANIFEST="$(TORTURE_SOURCE)/manifest.tsv"' \
+                                                '-DTORTURE_IMAGES="$(TORTURE_OUT)"'
+$(BUILD)/host-sanitize/tests/dspic30_sim_torture_test \
+$(BUILD)/host/tests/dspic30_sim_torture_test: | $(TORTURE_IMAGES)
+
+# --- differential programs ---------------------------------------------------
+# The C programs of tests/dspic30_sim/differential, for the dsPIC (with the
+# bare programs' support above) and for the host (with UBSan).
+DIFFERENTIAL_SOURCE := tests/dspic30_sim/differential
+DIFFERENTIAL_OUT := $(BUILD)/dspic30_sim/differential
+DIFFERENTIAL_PROGRAMS := arithmetic control constants
+DIFFERENTIAL_OUTPUTS := $(foreach p,$(DIFFERENTIAL_PROGRAMS),$(DIFFERENTIAL_OUT)/$(p).hex $(DIFFERENTIAL_OUT)/$(p).host)
+$(DIFFERENTIAL_OUT)/%.host: $(DIFFERENTIAL_SOURCE)/%.c $(DIFFERENTIAL_SOURCE)/harness_host.c \
+                            $(DIFFERENTIAL_SOURCE)/harness.h
+	@mkdir -p $(@D)
+	$(CC) -std=gnu99 -O2 -Wall -Wextra -Werror -fsanitize=undefined -fno-sanitize-recover=all \
+	    $< $(DIFFERENTIAL_SOURCE)/harness_host.c -o $@
+$(DIFFERENTIAL_OUT)/%.o: $(DIFFERENTIAL_SOURCE)/%.c $(DIFFERENTIAL_SOURCE)/harness.h | $(PIC30_TOOLCHAIN)
+	@mkdir -p $(@D)
+	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) -std=gnu99 -ffreestanding -Wall -Wextra -Werror \
+	    $(PIC30_GCC_INCLUDES) -c $< -o $@
+$(DIFFERENTIAL_OUT)/%.hex: $(DIFFERENTIAL_OUT)/%.o $(DIFFERENTIAL_OUT)/harness_dspic30.o $(TORTURE_SUPPORT) \
+                           $(TORTURE_SCRIPT)
+	$(call PIC30_LINK,$(@:.hex=.elf),$(TORTURE_OUT)/support/torture_crt0.o $< \
+	    $(DIFFERENTIAL_OUT)/harness_dspic30.o $(TORTURE_OUT)/support/libc.o \
+	    $(TORTURE_OUT)/support/torture_helpers.o)
+	$(PIC30_BIN)/pic30-elf-bin2hex $(@:.hex=.elf)
+.PRECIOUS: $(DIFFERENTIAL_OUT)/%.o
+
+TESTS += dspic30_sim_differential_test
+dspic30_sim_differential_test_SOURCES := tests/dspic30_sim/differential_test.cpp \
+                                         tests/dspic30_sim/pic30_toolchain.cpp
+dspic30_sim_differential_test_LIBS := dspic30_sim
+dspic30_sim_differential_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+EXTRA_CFLAGS_tests/dspic30_sim/differential_test := '-DDIFFERENTIAL_OUT="$(DIFFERENTIAL_OUT)"'
+$(BUILD)/host-sanitize/tests/dspic30_sim_differential_test \
+$(BUILD)/host/tests/dspic30_sim_differential_test: | $(DIFFERENTIAL_OUTPUTS)
+
+TESTS += dspic30_sim_system_test
+dspic30_sim_system_test_SOURCES := tests/dspic30_sim/system_test.cpp tests/dspic30_sim/pic30_toolchain.cpp
+dspic30_sim_system_test_LIBS := dspic30_sim
+dspic30_sim_system_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+$(BUILD)/host-sanitize/tests/dspic30_sim_system_test \
+$(BUILD)/host/tests/dspic30_sim_system_test: | $(PIC30_TOOLCHAIN)
+
+TESTS += dspic30_sim_program_test
+dspic30_sim_program_test_SOURCES := tests/dspic30_sim/program_test.cpp tests/dspic30_sim/pic30_toolchain.cpp
+dspic30_sim_program_test_LIBS := dspic30_sim
+dspic30_sim_program_test_LDLIBS := $(DSPIC30_SIM_TEST_LDLIBS)
+EXTRA_CFLAGS_tests/dspic30_sim/program_test := '-DDSPIC30_SIM="$(BUILD)/host-sanitize/bin/dspic30-sim"'
+$(BUILD)/host-sanitize/tests/dspic30_sim_program_test \
+$(BUILD)/host/tests/dspic30_sim_program_test: | $(PIC30_TOOLCHAIN) $(BUILD)/host-sanitize/bin/dspic30-sim

@@ -1,0 +1,29 @@
+# dspic30_sim: an instruction-set simulator of the e-puck's dsPIC30F6014A
+# (docs/dspic30-sim.md): the instruction table (instructions.def), the
+# decoder and disassembler driven by it, and the executor.
+LIBRARIES += dspic30_sim
+dspic30_sim_SOURCES := tools/dspic30_sim/isa.cpp tools/dspic30_sim/disassembler.cpp \
+                       tools/dspic30_sim/predecode.cpp tools/dspic30_sim/program_memory.cpp \
+                       tools/dspic30_sim/cpu.cpp tools/dspic30_sim/cpu_memory.cpp \
+                       tools/dspic30_sim/cpu_execute.cpp tools/dspic30_sim/cpu_dsp.cpp \
+                       tools/dspic30_sim/cpu_exceptions.cpp tools/dspic30_sim/cpu_nvm.cpp \
+                       tools/dspic30_sim/uart.cpp tools/dspic30_sim/timers.cpp \
+                       tools/dspic30_sim/intel_hex.cpp \
+                       tools/dspic30_sim/simulator.cpp
+
+# dspic30-sim: runs an image, UART1 on standard input and output.
+PROGRAMS += dspic30-sim
+dspic30-sim_SOURCES := tools/dspic30_sim/dspic30_sim_main.cpp
+dspic30-sim_LIBS := dspic30_sim
+
+# Microchip's pic30-elf toolchain (binutils and GCC 4.5.1, built from XC16's
+# GPL sources), unpacked into the build folder: the tests' oracle
+# (pic30-elf-objdump) and the compiler of their programs.
+# (tests/dspic30_sim/module.mk, read first, names the same folder.)
+PIC30_BIN ?= $(BUILD)/toolchains/pic30-elf/bin
+PIC30_TOOLCHAIN ?= $(PIC30_BIN)/pic30-elf-gcc
+PIC30_ARCHIVE ?= ../shared/toolchains/pic30/pic30-elf-xc16-v2.10-debian12-amd64.tar.xz
+$(PIC30_TOOLCHAIN):
+	@test -f $(PIC30_ARCHIVE) || { echo "dspic30_sim: the pic30-elf toolchain is not in $(PIC30_BIN) and its archive $(PIC30_ARCHIVE) is missing"; exit 1; }
+	mkdir -p $(BUILD)/toolchains && tar -xJf $(PIC30_ARCHIVE) -C $(BUILD)/toolchains
+	@touch $@
