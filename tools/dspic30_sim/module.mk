@@ -17,13 +17,11 @@ dspic30-sim_SOURCES := tools/dspic30_sim/dspic30_sim_main.cpp
 dspic30-sim_LIBS := dspic30_sim
 
 # Microchip's pic30-elf toolchain (binutils and GCC 4.5.1, built from XC16's
-# GPL sources), unpacked into the build folder: the tests' oracle
+# GPL sources), which `scripts/install-deps.sh dspic30` unpacks into the
+# build folder (the same as `make dspic30`'s): the tests' oracle
 # (pic30-elf-objdump) and the compiler of their programs.
 # (tests/dspic30_sim/module.mk, read first, names the same folder.)
 PIC30_BIN ?= $(BUILD)/toolchains/pic30-elf/bin
 PIC30_TOOLCHAIN ?= $(PIC30_BIN)/pic30-elf-gcc
-PIC30_ARCHIVE ?= ../shared/toolchains/pic30/pic30-elf-xc16-v2.10-debian12-amd64.tar.xz
-$(PIC30_TOOLCHAIN):
-	@test -f $(PIC30_ARCHIVE) || { echo "dspic30_sim: the pic30-elf toolchain is not in $(PIC30_BIN) and its archive $(PIC30_ARCHIVE) is missing"; exit 1; }
-	mkdir -p $(BUILD)/toolchains && tar -xJf $(PIC30_ARCHIVE) -C $(BUILD)/toolchains
-	@touch $@
+$(PIC30_TOOLCHAIN): | $(BUILD)/.deps-dspic30
+	@test -x $@ || { echo "dspic30_sim: no pic30-elf toolchain in $(PIC30_BIN)"; exit 1; }
