@@ -201,7 +201,7 @@ read -r arena_100_low arena_100_high arena_100_cpu_low arena_100_cpu_high arena_
 read -r arena_1000_low arena_1000_high arena_1000_cpu_low arena_1000_cpu_high arena_1000_threads \
     < <(arena_factors 1000 2)
 
-# --- the STM32F4 image (hal/stm32f4, on QEMU's netduinoplus2) ----------------
+# --- the STM32F4 image (ports/stm32f4, on QEMU's netduinoplus2) ----------------
 echo "bench: STM32F4 image" >&2
 make --no-print-directory BUILD="$build" stm32f4 "$bin/bench-qemu" >&2
 stm32f4_image=$build/stm32f4/epuck-aseba-stm32f4.elf
@@ -440,7 +440,7 @@ cores=$(nproc)
     echo "- STM32F4: \`make stm32f4\`, sizes by \`arm-none-eabi-size -A\` (code: the"
     echo "  vectors and .text; RAM: .data, .bss and the RAM the board keeps across resets"
     echo "  for its store, 16 KiB). Instructions: \`bench-qemu $stm32f4_runs\` runs the VM"
-    echo "  workload above on the harness image (tests/qemu/target) in QEMU with"
+    echo "  workload above on the harness image (tests/ports/stm32f4/target) in QEMU with"
     echo "  \`-icount shift=0\` (the guest's clock counts instructions); the image counts"
     echo "  the handler's steps one vm_step at a time, then times $stm32f4_runs runs to"
     echo "  the end with SysTick, and a loop of known instructions converts its clock to"

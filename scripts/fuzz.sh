@@ -51,7 +51,7 @@ targets=("$@")
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba
-          '-DTARGET_CONFIG="hal/host/host_config.h"')
+          '-DTARGET_CONFIG="boards/epuck_host/epuck_host_config.h"')
 
 for target in "${targets[@]}"; do
     [ -n "${sources[$target]:-}" ] || { echo "fuzz: unknown target '$target'" >&2; exit 2; }
