@@ -6,7 +6,7 @@
 #include "native_functions/nat_standard.h"
 #include "native_functions/nat_words.h"
 
-static const vm_native epuck_native_list[] = { NAT_STANDARD_LIST, NAT_DSP_LIST };
+static const vm_native epuck_native_list[] = { NAT_STANDARD_LIST NAT_DSP_LIST };
 
 const vm_native_table epuck_native_table = {
     epuck_native_list,
