@@ -65,10 +65,13 @@ ns_reference=$(divide "$("$bin/bench-vm" time reference $vm_timing_runs)" "$step
 # the AVR instructions and cycles of event `go` and the checksum of the
 # variables, which must be the host's.
 echo "bench: VM on the AVR (simavr)" >&2
+# The dsPIC target's switches, for what stands for the dsPIC (the dispatch
+# given on top).
+dspic30_config=('-DTARGET_CONFIG="boards/epuck_dspic30/epuck_dspic30_config.h"')
 "$bin/bench-vm" header >"$scratch/workload.h"
 host_checksum=$("$bin/bench-vm" checksum ours)
 avr_vm() { # dispatch (0: switch, 1: computed goto) -> "instructions cycles"
-    avr-gcc -std=gnu99 -Os -mmcu=atmega1284p -I. -Ivm -Inative_functions \
+    avr-gcc -std=gnu99 -Os -mmcu=atmega1284p -I. -Ivm -Inative_functions "${dspic30_config[@]}" \
         -DVM_USE_COMPUTED_GOTO="$1" "-DVM_WORKLOAD_HEADER=\"$scratch/workload.h\"" \
         -ffunction-sections -fdata-sections -Wl,--gc-sections bench/avr_workload.c \
         vm/vm.c vm/vm_debug.c vm/vm_verify.c -o "$scratch/avr-$1.elf"
@@ -156,7 +159,7 @@ for source in native_functions/nat_dsp*.c; do
     # nat_dsp_dspic30.c needs XC16's DSP builtins; the portable kernel stands for it.
     [[ $source == *_dspic30.c ]] && continue
     avr-gcc -std=gnu99 -Os -mmcu=atmega1284p -ffunction-sections -I. -Ivm -Inative_functions \
-        -c "$source" -o "$scratch/dsp.o"
+        "${dspic30_config[@]}" -c "$source" -o "$scratch/dsp.o"
     code=$(avr-size -A "$scratch/dsp.o" | awk '$1 ~ /^\.text/ { c += $2 } END { print c + 0 }')
     dsp_avr_code=$((dsp_avr_code + code))
 done

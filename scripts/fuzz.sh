@@ -58,12 +58,12 @@ for target in "${targets[@]}"; do
     out=$build/fuzz/$target
     mkdir -p "$out/obj" "$out/corpus"
     objects=()
-    # C files as the host build compiles them: the VM with computed goto (vm/module.mk).
+    # C files as the host build compiles them, with the host target's
+    # configuration (the VM with computed goto).
     for source in ${sources[$target]}; do
         object=$out/obj/$(echo "$source" | tr / _).o
         case $source in
         *.c) clang -std=gnu99 -Wall -Wextra -Werror "${sanitize[@]}" -fsanitize=fuzzer-no-link \
-                 -DVM_USE_COMPUTED_GOTO=1 \
                  "${includes[@]}" -c "$source" -o "$object" ;;
         *.cpp) clang++ -std=c++20 "${cxx_defines[@]}" -Wall -Wextra -Werror "${sanitize[@]}" \
                  -fsanitize=fuzzer-no-link "${includes[@]}" -c "$source" -o "$object" ;;

@@ -31,6 +31,12 @@
 
 #include "hal/hal.h"
 
+#if !defined(STORE_BYTECODE_SLOT_0) || !defined(STORE_BYTECODE_SLOT_1) ||                          \
+  !defined(STORE_SETTINGS_SLOT_0) || !defined(STORE_SETTINGS_SLOT_1) ||                            \
+  !defined(STORE_BYTECODE_SLOT_BLOCKS) || !defined(STORE_SETTINGS_SLOT_BLOCKS)
+#error "the target's configuration must place the store's slots (STORE_*_SLOT_*, docs/porting.md)"
+#endif
+
 #define STORE_SLOT_COUNT     2u
 #define STORE_BLOCK_WORDS    32u // flash words written at once
 #define STORE_BYTES_PER_WORD (HAL_FLASH_WORD_BITS / 8u)

@@ -29,9 +29,16 @@
 #define STORE_SETTINGS_WORDS 44u
 
 
-// --- the portable layers' switches -------------------------------------------------
-// Switch dispatch: XC16's support of `&&label` is unverified (vm/vm_config.h).
+// --- the portable layers' switches (vm/vm_config.h, vm/node_config.h) -------------
+// Switch dispatch: XC16's support of `&&label` is unverified. A build of
+// the VM both ways (scripts/bench.sh) gives its own.
+#ifndef VM_USE_COMPUTED_GOTO
 #define VM_USE_COMPUTED_GOTO 0
+#endif
+#define VM_MAX_NATIVE_ARGUMENTS    16   // stack words of the widest native
+#define NODE_INTER_BYTE_TIMEOUT_MS 500  // as GCtronic's e-puck firmware
+#define NODE_STEP_BUDGET           1000 // as upstream's microcontroller glue
+#define NODE_TRANSMIT_CHUNK        32   // one piece of a frame on its way out
 
 // --- clock (§1.6) ---------------------------------------------------------------
 #define DSPIC30_CRYSTAL_HZ       7372800ul

@@ -23,6 +23,17 @@
 // for calibration (as on the robot).
 #define STORE_SETTINGS_WORDS 44u
 
+// --- the portable layers' switches (vm/vm_config.h, vm/node_config.h) -------------
+// Threaded dispatch, the faster one with gcc and clang (docs/benchmarks.md);
+// the tests build the switch too (tests/vm/vm_switch.c).
+#ifndef VM_USE_COMPUTED_GOTO
+#define VM_USE_COMPUTED_GOTO 1
+#endif
+#define VM_MAX_NATIVE_ARGUMENTS    16   // stack words of the widest native
+#define NODE_INTER_BYTE_TIMEOUT_MS 500  // as GCtronic's e-puck firmware
+#define NODE_STEP_BUDGET           1000 // as upstream's microcontroller glue
+#define NODE_TRANSMIT_CHUNK        32   // one piece of a frame on its way out
+
 // Simulated time counts the e-puck's instruction cycles, so that timers and
 // ADC scans fall at the robot's cycles: 7.3728 MHz × 8 (PLL) / 4 (hardware
 // §1.6).

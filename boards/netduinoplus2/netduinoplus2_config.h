@@ -23,9 +23,15 @@
 // for calibration (the e-puck's count).
 #define STORE_SETTINGS_WORDS 44u
 
-// --- the portable layers' switches ------------------------------------------------
-// GCC's labels as values: threaded dispatch (vm/vm_config.h).
+// --- the portable layers' switches (vm/vm_config.h, vm/node_config.h) -------------
+// GCC's labels as values: threaded dispatch.
+#ifndef VM_USE_COMPUTED_GOTO
 #define VM_USE_COMPUTED_GOTO 1
+#endif
+#define VM_MAX_NATIVE_ARGUMENTS    16   // stack words of the widest native
+#define NODE_INTER_BYTE_TIMEOUT_MS 500  // as GCtronic's e-puck firmware
+#define NODE_STEP_BUDGET           1000 // as upstream's microcontroller glue
+#define NODE_TRANSMIT_CHUNK        32   // one piece of a frame on its way out
 
 // --- clock -------------------------------------------------------------------------
 // The core clock SysTick counts: QEMU's STM32F405 model runs its CPU clock at
