@@ -7,8 +7,8 @@
 #   make cross-check   the portable layers with 16- and 32-bit cross compilers
 #   make fuzz          every fuzz target for FUZZ_SECONDS (default 60) each
 #   make bench         performance figures beside the reference (docs/benchmarks.md)
-#   make dspic30       the e-puck's images, with XC16 or a pic30-elf GCC (hal/dspic30/module.mk)
-#   make stm32f4       the STM32F4 image, run by QEMU in the tests (hal/stm32f4/module.mk)
+#   make dspic30       the e-puck's images, with XC16 or a pic30-elf GCC (ports/dspic30/module.mk)
+#   make stm32f4       the STM32F4 image, run by QEMU in the tests (ports/stm32f4/module.mk)
 #   make run           the main job
 #   make install       the programs in PREFIX/bin (default /usr/local)
 #   make format        clang-format every source file
@@ -32,7 +32,7 @@ CXX_DEFINES := -DASIO_STANDALONE -DASIO_DISABLE_STD_ALIGNED_ALLOC
 INCLUDES := -I. -Ivm -Inative_functions
 # Every build names its target's one configuration header (docs/porting.md);
 # the host variants are the host target, the simulated e-puck.
-HOST_TARGET_CONFIG := '-DTARGET_CONFIG="hal/host/host_config.h"'
+HOST_TARGET_CONFIG := '-DTARGET_CONFIG="boards/epuck_host/epuck_host_config.h"'
 INCLUDES += $(HOST_TARGET_CONFIG)
 
 # Build variants: the plain host build, and the one the tests run in.
@@ -60,7 +60,7 @@ FUZZ_DEPS_STAMP := $(BUILD)/.deps-fuzz
 BENCH_DEPS_STAMP := $(BUILD)/.deps-bench
 EXPERIMENT_DEPS_STAMP := $(BUILD)/.deps-experiment
 
-include $(sort $(wildcard */module.mk */*/module.mk))
+include $(sort $(wildcard */module.mk */*/module.mk */*/*/module.mk))
 
 $(BUILD)/.deps-%: scripts/install-deps.sh
 	@BUILD=$(BUILD) scripts/install-deps.sh $*
@@ -137,7 +137,8 @@ deps:
 # The portable layers must build warning-free where `int` is 16 bits (the
 # dsPIC's case, here avr-gcc) and on a 32-bit microcontroller; they are
 # compiled with the e-puck target's configuration (scripts/cross-check.sh).
-PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c firmware/*.c drivers/*/*.c bootloader/*.c)
+PORTABLE_SOURCES := $(wildcard vm/*.c native_functions/*.c store/*.c bootloader/*.c firmware/*.c \
+                                robots/*/*.c robots/*/devices/*.c)
 dspic30-check: | $(CROSS_DEPS_STAMP)
 cross-check: | $(CROSS_DEPS_STAMP)
 	@scripts/cross-check.sh $(BUILD) $(PORTABLE_SOURCES)

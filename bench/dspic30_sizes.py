@@ -23,13 +23,15 @@ import sys
 PARTS = [
     ("vm", r"/vm/vm[a-z_]*\.o$"),
     ("node", r"/vm/node[a-z_]*\.o$"),
-    ("dsp_natives", r"/(native_functions/nat_dsp[a-z_]*|hal/dspic30/dspic30_dsp_kernel)\.o$"),
+    ("dsp_natives", r"/(native_functions/nat_dsp[a-z_]*|ports/dspic30/dspic30_dsp_kernel)\.o$"),
     ("natives", r"/native_functions/nat_[a-z_]*\.o$"),
-    ("firmware", r"/firmware/[a-z_]*\.o$"),
-    ("drivers", r"/drivers/[a-z_/]*\.o$"),
-    ("store", r"/bootloader/[a-z_]*\.o$"),
-    ("runtime", r"/hal/dspic30/dspic30_(reset|startup|runtime)\.o$"),
-    ("port", r"/hal/[a-z_/0-9]*\.o$"),
+    # The main loop and the robot's package (description, native table).
+    ("firmware", r"/(firmware|robots/[a-z0-9_]+)/[a-z_]*\.o$"),
+    ("drivers", r"/robots/[a-z0-9_]+/devices/[a-z_]*\.o$"),
+    ("store", r"/(store|bootloader)/[a-z_]*\.o$"),
+    ("runtime", r"/ports/dspic30/dspic30_(reset|startup|runtime)\.o$"),
+    # The chip, the board on it, and the link rings of the boundary.
+    ("port", r"/(ports|boards|hal)/[a-z_/0-9]*\.o$"),
 ]
 # Anything else: the linker's own sections (the jump table of function
 # pointers, "jump_table"), named "other".
@@ -114,7 +116,7 @@ def main():
     parts_object = f"{out}/ram_parts.o"
     subprocess.run([prefix + "gcc", "-mcpu=30F6014A", "-std=gnu99", "-Os", "-ffreestanding",
                     "-I.", "-Ivm", "-Inative_functions",
-                    '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"',
+                    '-DTARGET_CONFIG="boards/epuck_dspic30/epuck_dspic30_config.h"',
                     "-c", "bench/ram_parts.c", "-o", parts_object], check=True)
     for line in subprocess.run([prefix + "objdump", "-t", parts_object], check=True,
                                capture_output=True, text=True).stdout.splitlines():

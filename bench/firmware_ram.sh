@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The RAM of the e-puck firmware, measured on a linked 16-bit image: the
-# dsPIC application's sources (as hal/dspic30/module.mk lists them, the
-# portable DSP kernel standing for the DSP-engine one) built with avr-gcc,
+# dsPIC application's sources (as ports/dspic30/module.mk lists them, the
+# portable DSP kernel standing for the DSP-engine one, without the reset
+# code in dsPIC assembly) built with avr-gcc,
 # whose `int` is 16 bits like XC16's, against one volatile word for the
 # chip's registers (bench/ram_image.c). RAM is the image's .data and .bss
 # without its constants (avr-gcc copies those to RAM; XC16 leaves them in
@@ -11,12 +12,14 @@ set -euo pipefail
 out=$1/bench-ram
 mkdir -p "$out"
 flags=(-std=gnu99 -Os -ffreestanding -mmcu=atmega1284p -I. -Ivm -Inative_functions
-       -DDSPIC30_SIMULATED_REGISTERS '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"')
+       -DDSPIC30_SIMULATED_REGISTERS '-DTARGET_CONFIG="boards/epuck_dspic30/epuck_dspic30_config.h"')
 
 sources=()
 # (MAKEFLAGS emptied: run from make, the inner make must not look for its jobs.)
 for source in $(MAKEFLAGS= make -s --no-print-directory sources-DSPIC30_APPLICATION); do
-    [[ $source == hal/dspic30/dspic30_dsp_kernel.c ]] && continue
+    # The DSP-engine kernel needs XC16's builtins (the portable one stands
+    # for it), the reset code is dsPIC assembly.
+    [[ $source == ports/dspic30/dspic30_dsp_kernel.c || $source == *.s ]] && continue
     sources+=("$source")
 done
 sources+=(native_functions/nat_dsp_kernel.c bench/ram_image.c)

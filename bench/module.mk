@@ -43,7 +43,7 @@ $(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/obj/bench/avr_step_counter.o: | $(B
 # `make cross-check` also prints the RAM of the e-puck firmware, measured on
 # a linked 16-bit image (bench/firmware_ram.sh; `make bench` gives its parts).
 .PHONY: firmware-ram
-firmware-ram: | $(DEPS_STAMP)
+firmware-ram: | $(DEPS_STAMP) $(CROSS_DEPS_STAMP)
 	@ram=$$(bench/firmware_ram.sh $(BUILD)) && echo "$$ram" | awk '$$1 == "total" { \
 	    printf "== e-puck firmware, linked 16-bit image (avr-gcc): %d bytes of RAM\n", $$2 }'
 cross-check: firmware-ram

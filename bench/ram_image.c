@@ -6,7 +6,7 @@
 
 #include <stdint.h>
 
-#include "hal/dspic30/dspic30_registers.h"
+#include "ports/dspic30/dspic30_registers.h"
 
 static volatile uint16_t register_latch;
 

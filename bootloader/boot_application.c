@@ -2,7 +2,7 @@
 
 #include "bootloader/boot_application.h"
 
-#include "vm/node.h"
+#include "vm/node_crc.h"
 
 #define BYTE_BITS  8u
 #define BYTE_MASK  0xFFu

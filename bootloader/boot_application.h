@@ -3,7 +3,7 @@
 //
 // The application region is BOOT_APPLICATION_START up to
 // BOOT_APPLICATION_END, both from the target's flash layout (on the e-puck,
-// hal/dspic30/dspic30_flash_layout.h: 0x100 up to the bytecode store). It
+// robots/epuck/epuck_flash_layout.h: 0x100 up to the bytecode store). It
 // starts with the application's entry (on the e-puck, a GOTO table, which
 // the bootloader image's vectors lead to); its last page holds the
 // descriptor, which the host tool (tools/flash) adds to the image; its

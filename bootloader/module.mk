@@ -1,5 +1,4 @@
-# The fail-safe record store (bytecode, settings) and the serial bootloader's
-# core, portable C99 on hal.h.
+# The serial bootloader's core and the application's descriptor, portable
+# C99 on hal.h.
 LIBRARIES += aseba_bootloader
-aseba_bootloader_SOURCES := bootloader/bytecode_store.c bootloader/boot_application.c \
-                            bootloader/bootloader.c
+aseba_bootloader_SOURCES := bootloader/boot_application.c bootloader/bootloader.c

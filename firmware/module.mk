@@ -1,4 +1,5 @@
-# The e-puck firmware, built here for the host (epuck-emu); the dsPIC build
-# compiles the same files with XC16.
-LIBRARIES += aseba_epuck_firmware
-aseba_epuck_firmware_SOURCES := firmware/epuck_firmware.c firmware/epuck_natives.c
+# The firmware's main loop, robot-neutral: built here for the host, with the
+# host target's robot (epuck-emu); the chip builds compile the same file
+# with their own configuration.
+LIBRARIES += aseba_firmware
+aseba_firmware_SOURCES := firmware/firmware.c

@@ -3,12 +3,14 @@
 // ask of any chip. Short on purpose: time, the link to the hosts, the flash,
 // critical sections, reset and idle.
 //
-// Each port (hal/<chip>/) implements every function, and describes its chip
-// in the target's one configuration header, which every build names with
-// TARGET_CONFIG (e.g. -DTARGET_CONFIG='"hal/host/host_config.h"'): the
+// Each chip's port (ports/<chip>/) implements every function, and the
+// target's one configuration header (boards/<board>/<board>_config.h),
+// which every build names with TARGET_CONFIG, describes the chip: the
 // link's buffers and the flash's words and units. What a pin or an analog
-// input means on a robot is that robot's board layer (drivers/<robot>/), not
-// the chip's. A board is an instance: the host holds many, a chip build
+// input means on a robot is the robot's board interface
+// (robots/<robot>/<robot>_board.h), which the board implements on the chip
+// (boards/<board>/), not the chip's. A board is an instance (struct
+// hal_board, defined by the port): the host holds many, a chip build
 // exactly one. docs/porting.md says how to write a port.
 
 #ifndef HAL_H

@@ -16,6 +16,7 @@
 #include <stddef.h>
 
 #include "nat_internal.h"
+#include "nat_words.h"
 
 #define DEQUE_COUNT        0 // Q[0]
 #define DEQUE_START        1 // Q[1]
@@ -189,6 +190,8 @@ static void erase_words(deque *queue, uint16_t index, uint16_t size)
     store_header(queue);
 }
 
+NATIVE(deque_size, 3, W_DEQUE "." W_SIZE, "report " W_SIZE W_OF W_DEST, P(N, W_DEQUE) P(1, W_SIZE));
+
 void nat_deque_size_function(vm_state *vm, const int16_t *arguments)
 {
     // Only n is read, so the array needs just that word, not a whole header.
@@ -243,15 +246,33 @@ static void transfer_at_index(vm_state *vm, const int16_t *arguments, bool into_
     copy_words(&queue, (uint16_t)index, tuple, size, into_deque);
 }
 
+NATIVE(deque_get,
+       5,
+       W_DEQUE ".get",
+       W_FILL " " W_DEST W_FROM W_DEQUE " at " W_INDEX,
+       P(N, W_DEQUE) P(M, W_DEST) P(1, W_INDEX));
+
 void nat_deque_get_function(vm_state *vm, const int16_t *arguments)
 {
     transfer_at_index(vm, arguments, false);
 }
 
+NATIVE(deque_set,
+       5,
+       W_DEQUE ".set",
+       "copies " W_SRC W_TO W_DEQUE " at " W_INDEX,
+       P(N, W_DEQUE) P(M, W_SRC) P(1, W_INDEX));
+
 void nat_deque_set_function(vm_state *vm, const int16_t *arguments)
 {
     transfer_at_index(vm, arguments, true);
 }
+
+NATIVE(deque_insert,
+       5,
+       W_DEQUE "." W_INSERT,
+       W_SHIFT " " W_DEQUE " at " W_INDEX W_BY "len(" W_SRC ")" W_AND W_INSERT " " W_SRC,
+       P(N, W_DEQUE) P(M, W_SRC) P(1, W_INDEX));
 
 void nat_deque_insert_function(vm_state *vm, const int16_t *arguments)
 {
@@ -267,6 +288,12 @@ void nat_deque_insert_function(vm_state *vm, const int16_t *arguments)
         return;
     insert_words(&queue, (uint16_t)index, src, size);
 }
+
+NATIVE(deque_erase,
+       4,
+       W_DEQUE "." W_ERASE,
+       W_SHIFT " " W_DEQUE " at " W_INDEX W_BY "len" W_TO W_ERASE,
+       P(N, W_DEQUE) P(1, W_INDEX) P(1, "len"));
 
 void nat_deque_erase_function(vm_state *vm, const int16_t *arguments)
 {
@@ -328,20 +355,44 @@ static void pop(vm_state *vm, const int16_t *arguments, bool at_back)
     erase_words(&queue, index, size);
 }
 
+NATIVE(deque_push_front,
+       4,
+       W_DEQUE ".push_" W_FRONT,
+       W_INSERT " " W_SRC " before" W_THE W_FRONT W_OF W_DEQUE,
+       P(N, W_DEQUE) P(M, W_SRC));
+
 void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments)
 {
     push(vm, arguments, false);
 }
+
+NATIVE(deque_push_back,
+       4,
+       W_DEQUE ".push_" W_BACK,
+       W_INSERT " " W_SRC " after" W_THE W_BACK W_OF W_DEQUE,
+       P(N, W_DEQUE) P(M, W_SRC));
 
 void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments)
 {
     push(vm, arguments, true);
 }
 
+NATIVE(deque_pop_front,
+       4,
+       W_DEQUE ".pop_" W_FRONT,
+       W_FILL " " W_DEST W_FROM W_FRONT W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
+       P(N, W_DEQUE) P(M, W_DEST));
+
 void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments)
 {
     pop(vm, arguments, false);
 }
+
+NATIVE(deque_pop_back,
+       4,
+       W_DEQUE ".pop_" W_BACK,
+       W_FILL " " W_DEST W_FROM W_BACK W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
+       P(N, W_DEQUE) P(M, W_DEST));
 
 void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments)
 {

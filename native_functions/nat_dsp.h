@@ -4,9 +4,24 @@
 //
 // Portable C99 like the standard natives: no floating point, no allocation,
 // all arithmetic in fixed-width integers, every result rounded half up and
-// saturated to int16; the formats are in each description string and in
-// the comments of nat_dsp.c. A target lists them in its native table with
-// NAT_DSP_LIST, normally right after NAT_STANDARD_LIST.
+// saturated to int16. A target lists them in its native table with
+// NAT_DSP_LIST, normally right after NAT_STANDARD_LIST. NAT_DSP_NAMES is
+// the module's one table, as NAT_STANDARD_NAMES for the standard natives;
+// each native's description is beside its body (nat_dsp_fft.c,
+// nat_dsp_filter.c, nat_dsp_correlation.c), with its format, which the
+// description strings say too:
+//   dsp.fft   in place, real/imag int16, size 8...128 power of two; each of
+//             the log2(N) stages halves (round half up): output X[k] / N.
+//             Twiddles Q15. Outputs saturate (only if |input| > 32767).
+//   dsp.mag   floor(sqrt(re^2 + im^2)) saturated to 32767.
+//   dsp.fir   Q15 taps, dest[n] = sum c[k] src[n-k], src before 0 is 0.
+//   dsp.iir   one biquad, Q14 b0 b1 b2 a1 a2, y = b.x - a.y, state
+//             [x1 x2 y1 y2] kept by the script between calls.
+//   dsp.corr  dest[i] = sum a[n+lag] b[n], lag = i - len(dest)/2, >> shift.
+//   dsp.conv  dest[i] = sum a[k] b[i-k], >> shift.
+//   dsp.peak  index and value of the first maximum.
+// Every result is rounded half up and saturated to int16. The descriptions
+// are packed with the standard natives' words (nat_words.h).
 
 #ifndef NAT_DSP_H
 #define NAT_DSP_H
@@ -15,17 +30,15 @@
 #include "vm.h"
 
 // The DSP natives by name, in their order: native NAME is nat_NAME_function
-// and nat_NAME_description (nat_dsp.c), as for the standard natives.
+// and nat_NAME_description, side by side, as for the standard natives.
 #define NAT_DSP_NAMES(X)                                                                           \
     X(dsp_fft) X(dsp_mag) X(dsp_fir) X(dsp_iir) X(dsp_corr) X(dsp_conv) X(dsp_peak)
 NAT_DSP_NAMES(NAT_DECLARE)
 
 // The DSP natives, as initialisers of an array of vm_native.
-#define NAT_DSP_LIST                                                                               \
-    NAT_RECORD(dsp_fft), NAT_RECORD(dsp_mag), NAT_RECORD(dsp_fir), NAT_RECORD(dsp_iir),            \
-      NAT_RECORD(dsp_corr), NAT_RECORD(dsp_conv), NAT_RECORD(dsp_peak)
+#define NAT_DSP_LIST NAT_DSP_NAMES(NAT_LIST_ENTRY)
 
 // Number of entries of NAT_DSP_LIST.
-#define NAT_DSP_COUNT 7
+#define NAT_DSP_COUNT (0 NAT_DSP_NAMES(NAT_ONE))
 
 #endif

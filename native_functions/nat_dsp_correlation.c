@@ -11,6 +11,7 @@
 
 #include "nat_dsp_internal.h"
 #include "nat_internal.h"
+#include "nat_words.h"
 
 // Argument layout of dsp.corr and dsp.conv: &dest, &a, &b, &shift, then the
 // sizes of templates -1 (dest), -2 (a) and -3 (b).
@@ -56,6 +57,13 @@ static bool fetch_lagged_signals(vm_state *vm, const int16_t *arguments, lagged_
 // division): lag 0 in the middle, so a dest of 2N-1 holds lags -(N-1)...N-1.
 // Terms outside either array are zero. A peak at lag L > 0 means that a
 // follows b by L samples (a[n + L] looks like b[n]).
+NATIVE(dsp_corr,
+       7,
+       "dsp.corr",
+       "correlation: " W_DEST "[i] = sum a[n+lag]*b[n] >> " W_SHIFT " (0..31), lag = i - " W_SIZE
+       "(" W_DEST ")/2; rounded, saturated",
+       P(N, W_DEST) P(M, "a") P(P, "b") P(1, W_SHIFT));
+
 void nat_dsp_corr_function(vm_state *vm, const int16_t *arguments)
 {
     lagged_signals s;
@@ -77,6 +85,13 @@ void nat_dsp_corr_function(vm_state *vm, const int16_t *arguments)
 // dest[i] = sum over k of a[k] * b[i - k]: the full convolution has
 // a_size + b_size - 1 terms; a shorter dest gets its first ones, a longer
 // one zeros after them.
+NATIVE(dsp_conv,
+       7,
+       "dsp.conv",
+       "convolution: " W_DEST "[i] = sum a[k]*b[i-k] >> " W_SHIFT " (0..31); full length is " W_SIZE
+       "(a)+" W_SIZE "(b)-1; rounded, saturated",
+       P(N, W_DEST) P(M, "a") P(P, "b") P(1, W_SHIFT));
+
 void nat_dsp_conv_function(vm_state *vm, const int16_t *arguments)
 {
     lagged_signals s;
@@ -93,6 +108,12 @@ void nat_dsp_conv_function(vm_state *vm, const int16_t *arguments)
                     : 0;
     }
 }
+
+NATIVE(dsp_peak,
+       4,
+       "dsp.peak",
+       W_INDEX W_AND W_VALUE W_OF "the first maximum" W_OF W_SRC,
+       P(1, W_INDEX) P(1, W_VALUE) P(N, W_SRC));
 
 void nat_dsp_peak_function(vm_state *vm, const int16_t *arguments)
 {

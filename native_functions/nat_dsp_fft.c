@@ -12,6 +12,7 @@
 
 #include "nat_dsp_internal.h"
 #include "nat_internal.h"
+#include "nat_words.h"
 
 #define FFT_MIN_SIZE 8
 #define FFT_MAX_SIZE 128
@@ -78,6 +79,13 @@ static int16_t halve_sum(int32_t a, int32_t t)
     return nat_dsp_saturate32(nat_dsp_round_shift32(a + t, 1));
 }
 
+NATIVE(dsp_fft,
+       3,
+       "dsp.fft",
+       "in-place FFT" W_OF "real,imag (" W_SIZE " 8..128, power" W_OF
+       "2); each stage halves, so" W_THE "result is X/N; rounded half up, saturated",
+       P(N, "real") P(N, "imag"));
+
 void nat_dsp_fft_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t size = nat_size_after(arguments, 2);
@@ -140,6 +148,12 @@ static uint32_t integer_square_root(uint32_t value)
     }
     return root;
 }
+
+NATIVE(dsp_mag,
+       4,
+       "dsp.mag",
+       W_DEST " = floor(sqrt(real^2 + imag^2))" W_ELEMENT_BY_ELEMENT ", saturated to 32767",
+       P(N, W_DEST) P(N, "real") P(N, "imag"));
 
 void nat_dsp_mag_function(vm_state *vm, const int16_t *arguments)
 {

@@ -9,6 +9,7 @@
 
 #include "nat_dsp_internal.h"
 #include "nat_internal.h"
+#include "nat_words.h"
 
 // FIR coefficients are Q15 (32767 is 0.99997); IIR coefficients are Q14
 // (16384 is 1.0) so that a biquad's a1, up to 2 in magnitude, fits.
@@ -20,6 +21,13 @@
 #define IIR_STATE_COUNT       4 // x[n-1] x[n-2] y[n-1] y[n-2]
 enum { IIR_B0, IIR_B1, IIR_B2, IIR_A1, IIR_A2 };
 enum { IIR_X1, IIR_X2, IIR_Y1, IIR_Y2 };
+
+NATIVE(dsp_fir,
+       5,
+       "dsp.fir",
+       "FIR filter: " W_DEST "[n] = sum c[k]*" W_SRC "[n-k] / 32768 (c in Q15, " W_SRC
+       " zero before its start), rounded, saturated; " W_DEST " may be " W_SRC,
+       P(N, W_DEST) P(N, W_SRC) P(M, "coefficients"));
 
 void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments)
 {
@@ -44,6 +52,13 @@ void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments)
           nat_dsp_scaled_dot_product(coefficients, src + n, -1, taps, FIR_COEFFICIENT_SHIFT);
     }
 }
+
+NATIVE(dsp_iir,
+       5,
+       "dsp.iir",
+       "biquad: y = (b0 x + b1 x1 + b2 x2 - a1 y1 - a2 y2) / 16384; coefficients [b0 b1 b2 a1 a2] "
+       "in Q14, state [x1 x2 y1 y2] kept between calls; rounded, saturated",
+       P(N, W_DEST) P(N, W_SRC) P(5, "coefficients") P(4, "state"));
 
 void nat_dsp_iir_function(vm_state *vm, const int16_t *arguments)
 {

@@ -56,7 +56,7 @@ static inline int16_t nat_dsp_saturate32(int32_t value)
 // exact, then divided by 2^shift rounded half up (nat_dsp_round_shift,
 // 0 <= shift <= NAT_DSP_MAX_SHIFT) and saturated to int16. Returns 0 when
 // count is 0. nat_dsp_kernel.c is the portable version; the dsPIC30F build
-// compiles hal/dspic30/dspic30_dsp_kernel.c, its DSP-engine version, instead.
+// compiles ports/dspic30/dspic30_dsp_kernel.c, its DSP-engine version, instead.
 int16_t nat_dsp_scaled_dot_product(const int16_t *a,
                                    const int16_t *b,
                                    int16_t b_step,

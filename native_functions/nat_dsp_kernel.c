@@ -2,8 +2,8 @@
 // products, exact in 64 bits, rounded and saturated once at the end.
 //
 // Every build but the dsPIC30F one compiles this file; the dsPIC30F build
-// compiles hal/dspic30/dspic30_dsp_kernel.c, the same function on the DSP
-// engine (hal/dspic30/module.mk makes the swap).
+// compiles ports/dspic30/dspic30_dsp_kernel.c, the same function on the DSP
+// engine (ports/dspic30/module.mk makes the swap).
 
 #include "nat_dsp_internal.h"
 

@@ -1,5 +1,6 @@
 // What the files of the standard natives share: the functions that fetch
-// arguments and the macros that write the descriptions of nat_standard.c.
+// arguments and the macros that write the natives' descriptions, beside
+// their bodies.
 // Not for use outside native_functions/.
 
 #ifndef NAT_INTERNAL_H

@@ -9,6 +9,7 @@
 #include <stddef.h>
 
 #include "nat_internal.h"
+#include "nat_words.h"
 
 // The linear congruential generator of math.rand (upstream's constants).
 #define RAND_MULTIPLIER 25173u
@@ -49,10 +50,22 @@ static int16_t identity(int16_t value, int16_t same)
     return value;
 }
 
+NATIVE(math_copy,
+       3,
+       W_MATH "copy",
+       "copies " W_SRC W_TO W_DEST W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC));
+
 void nat_math_copy_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 1, identity);
 }
+
+NATIVE(math_fill,
+       3,
+       W_MATH W_FILL,
+       W_FILL "s " W_DEST " with constant " W_VALUE,
+       P(N, W_DEST) P(1, W_VALUE));
 
 void nat_math_fill_function(vm_state *vm, const int16_t *arguments)
 {
@@ -67,6 +80,12 @@ void nat_math_fill_function(vm_state *vm, const int16_t *arguments)
     for (uint16_t i = 0; i < length; ++i)
         dest[i] = *value;
 }
+
+NATIVE(math_addscalar,
+       4,
+       W_MATH W_ADD W_SCALAR,
+       W_ADD " " W_SCALAR W_TO "each" W_ELEMENT W_OF W_SRC W_AND "store result" W_TO W_DEST,
+       P(N, W_DEST) P(N, W_SRC) P(1, W_SCALAR));
 
 void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments)
 {
@@ -83,15 +102,33 @@ void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments)
         spans[0][i] = add(spans[1][i], addend);
 }
 
+NATIVE(math_add,
+       4,
+       W_MATH W_ADD,
+       W_ADD "s " W_SRC1 W_AND W_SRC2 ", " W_WRITE W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
+
 void nat_math_add_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, add);
 }
 
+NATIVE(math_sub,
+       4,
+       W_MATH "sub",
+       "substracts " W_SRC2 W_FROM W_SRC1 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
+
 void nat_math_sub_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, subtract);
 }
+
+NATIVE(math_mul,
+       4,
+       W_MATH "mul",
+       "multiplies " W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
 void nat_math_mul_function(vm_state *vm, const int16_t *arguments)
 {
@@ -125,20 +162,44 @@ static void divide_elementwise(vm_state *vm, const int16_t *arguments, bool with
     }
 }
 
+NATIVE(math_div,
+       4,
+       W_MATH "div",
+       "divides " W_SRC1 W_BY W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
+
 void nat_math_div_function(vm_state *vm, const int16_t *arguments)
 {
     divide_elementwise(vm, arguments, false);
 }
+
+NATIVE(math_min,
+       4,
+       W_MATH "min",
+       W_WRITE "s" W_THE "minimum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
 void nat_math_min_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, minimum);
 }
 
+NATIVE(math_max,
+       4,
+       W_MATH "max",
+       W_WRITE "s" W_THE "maximum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
+
 void nat_math_max_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, maximum);
 }
+
+NATIVE(math_clamp,
+       5,
+       W_MATH "clamp",
+       "clamp " W_SRC W_TO "low/high bounds into " W_DEST "," W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, W_SRC) P(N, "low") P(N, "high"));
 
 void nat_math_clamp_function(vm_state *vm, const int16_t *arguments)
 {
@@ -160,6 +221,12 @@ void nat_math_clamp_function(vm_state *vm, const int16_t *arguments)
             dest[i] = value;
     }
 }
+
+NATIVE(math_dot,
+       5,
+       W_MATH "dot",
+       W_WRITE "s" W_THE "dot product" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST ", after a " W_SHIFT,
+       P(1, W_DEST) P(N, W_SRC1) P(N, W_SRC2) P(1, W_SHIFT));
 
 void nat_math_dot_function(vm_state *vm, const int16_t *arguments)
 {
@@ -195,6 +262,12 @@ void nat_math_dot_function(vm_state *vm, const int16_t *arguments)
     }
 }
 
+NATIVE(math_stat,
+       5,
+       W_MATH "stat",
+       W_PERFORMS "statistics on " W_SRC,
+       P(N, W_SRC) P(1, "min") P(1, "max") P(1, "mean"));
+
 void nat_math_stat_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 4);
@@ -226,6 +299,12 @@ void nat_math_stat_function(vm_state *vm, const int16_t *arguments)
     *mean = (int16_t)(sum / (int32_t)length);
 }
 
+NATIVE(math_argbounds,
+       4,
+       W_MATH "argbounds",
+       "get" W_THE "indices (argmin, argmax)" W_OF "the limit " W_VALUE "s" W_OF W_SRC,
+       P(N, W_SRC) P(1, "argmin") P(1, "argmax"));
+
 void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 3);
@@ -255,6 +334,8 @@ void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments)
     }
 }
 
+NATIVE(math_sort, 2, W_MATH "sort", "sort " W_ARRAY " in place", P(N, W_ARRAY));
+
 void nat_math_sort_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 1);
@@ -276,10 +357,18 @@ void nat_math_sort_function(vm_state *vm, const int16_t *arguments)
     }
 }
 
+NATIVE(math_muldiv,
+       5,
+       W_MATH "muldiv",
+       W_PERFORMS W_DEST " = (a*b)/c in 32 bits" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "a") P(N, "b") P(N, "c"));
+
 void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments)
 {
     divide_elementwise(vm, arguments, true);
 }
+
+NATIVE(math_rand, 2, W_MATH "rand", W_FILL " " W_ARRAY " with random " W_VALUE "s", P(N, W_DEST));
 
 void nat_math_rand_function(vm_state *vm, const int16_t *arguments)
 {

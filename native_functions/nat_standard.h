@@ -1,9 +1,14 @@
 // The 30 standard Aseba native functions (language.md §13), in the order of
 // upstream's standard library, plus the integer trigonometry they use.
 //
-// A target lists them in its own native table, after or before its own
-// natives, with NAT_STANDARD_LIST; host tools that only need the standard
-// library use nat_standard_table.
+// NAT_STANDARD_NAMES is the module's one table: the natives' declarations,
+// their records (NAT_STANDARD_LIST) and their count (NAT_STANDARD_COUNT)
+// all come from it, as the VM's come from vm_opcodes.h. A native is its
+// line there, and its description (NATIVE, nat_internal.h) with its body in
+// nat_math.c, nat_trigonometry.c or nat_deque.c. A target lists them in its
+// own native table, after or before its own natives, with
+// NAT_STANDARD_LIST; host tools that only need the standard library use
+// nat_standard_table.
 
 #ifndef NAT_STANDARD_H
 #define NAT_STANDARD_H
@@ -12,9 +17,10 @@
 
 #include "vm.h"
 
-// The standard natives by name, in their standard order: X(math_copy) ...
-// Native NAME is the C function nat_NAME_function and the packed
-// description (vm.h, vm_native) nat_NAME_description of nat_standard.c.
+// The standard natives by name, in their standard order (their ids):
+// X(math_copy) ... Native NAME is the C function nat_NAME_function and the
+// packed description (vm.h, vm_native) nat_NAME_description, side by side
+// in the file of its family.
 #define NAT_STANDARD_NAMES(X)                                                                      \
     X(math_copy)                                                                                   \
     X(math_fill)                                                                                   \
@@ -59,21 +65,19 @@ NAT_STANDARD_NAMES(NAT_DECLARE)
         nat_##name##_function, nat_##name##_description                                            \
     }
 
+// The same followed by a comma, so that lists of records follow one
+// another: { NAT_STANDARD_LIST NAT_DSP_LIST }.
+#define NAT_LIST_ENTRY(name) NAT_RECORD(name),
+
+// Counts a native of a table: NAT_STANDARD_NAMES(NAT_ONE) is +1 +1 ...
+#define NAT_ONE(name) +1
+
 // The standard natives in their standard order, as initialisers of an array
 // of vm_native (a target's table may add its own before or after).
-#define NAT_STANDARD_LIST                                                                          \
-    NAT_RECORD(math_copy), NAT_RECORD(math_fill), NAT_RECORD(math_addscalar),                      \
-      NAT_RECORD(math_add), NAT_RECORD(math_sub), NAT_RECORD(math_mul), NAT_RECORD(math_div),      \
-      NAT_RECORD(math_min), NAT_RECORD(math_max), NAT_RECORD(math_clamp), NAT_RECORD(math_dot),    \
-      NAT_RECORD(math_stat), NAT_RECORD(math_argbounds), NAT_RECORD(math_sort),                    \
-      NAT_RECORD(math_muldiv), NAT_RECORD(math_atan2), NAT_RECORD(math_sin), NAT_RECORD(math_cos), \
-      NAT_RECORD(math_rot2), NAT_RECORD(math_sqrt), NAT_RECORD(math_rand), NAT_RECORD(deque_size), \
-      NAT_RECORD(deque_get), NAT_RECORD(deque_set), NAT_RECORD(deque_insert),                      \
-      NAT_RECORD(deque_erase), NAT_RECORD(deque_push_front), NAT_RECORD(deque_push_back),          \
-      NAT_RECORD(deque_pop_front), NAT_RECORD(deque_pop_back)
+#define NAT_STANDARD_LIST NAT_STANDARD_NAMES(NAT_LIST_ENTRY)
 
 // Number of entries of NAT_STANDARD_LIST.
-#define NAT_STANDARD_COUNT 30
+#define NAT_STANDARD_COUNT (0 NAT_STANDARD_NAMES(NAT_ONE))
 
 // A table of exactly the standard natives (the desktop dummy node's list).
 extern const vm_native_table nat_standard_table;

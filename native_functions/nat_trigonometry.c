@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "nat_internal.h"
+#include "nat_words.h"
 #include "nat_standard.h"
 
 #define QUARTER_TURN       16384 // pi/2
@@ -187,6 +188,12 @@ int16_t nat_sqrt(int16_t x)
     return (int16_t)root;
 }
 
+NATIVE(math_atan2,
+       4,
+       W_MATH "atan2",
+       W_PERFORMS W_DEST " = atan2(y,x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "y") P(N, "x"));
+
 void nat_math_atan2_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, nat_atan2);
@@ -205,15 +212,33 @@ static int16_t cosine_of(int16_t angle, int16_t same)
     return nat_cos(angle);
 }
 
+NATIVE(math_sin,
+       3,
+       W_MATH "sin",
+       W_PERFORMS W_DEST " = sin(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+
 void nat_math_sin_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 1, sine_of);
 }
 
+NATIVE(math_cos,
+       3,
+       W_MATH "cos",
+       W_PERFORMS W_DEST " = cos(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+
 void nat_math_cos_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 1, cosine_of);
 }
+
+NATIVE(math_rot2,
+       3,
+       W_MATH "rot2",
+       "rotates v" W_OF "angle a" W_TO W_DEST,
+       P(2, W_DEST) P(2, "v") P(1, "a"));
 
 void nat_math_rot2_function(vm_state *vm, const int16_t *arguments)
 {
@@ -233,6 +258,12 @@ void nat_math_rot2_function(vm_state *vm, const int16_t *arguments)
     dest[0] = nat_wrap((cosine * x - sine * y) >> SINE_FRACTION_BITS);
     dest[1] = nat_wrap((cosine * y + sine * x) >> SINE_FRACTION_BITS);
 }
+
+NATIVE(math_sqrt,
+       3,
+       W_MATH "sqrt",
+       W_PERFORMS W_DEST " = sqrt(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
 
 void nat_math_sqrt_function(vm_state *vm, const int16_t *arguments)
 {

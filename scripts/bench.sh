@@ -66,10 +66,13 @@ ns_reference=$(divide "$("$bin/bench-vm" time reference $vm_timing_runs)" "$step
 # the AVR instructions and cycles of event `go` and the checksum of the
 # variables, which must be the host's.
 echo "bench: VM on the AVR (simavr)" >&2
+# The dsPIC target's switches, for what stands for the dsPIC (the dispatch
+# given on top).
+dspic30_config=('-DTARGET_CONFIG="boards/epuck_dspic30/epuck_dspic30_config.h"')
 "$bin/bench-vm" header >"$scratch/workload.h"
 host_checksum=$("$bin/bench-vm" checksum ours)
 avr_vm() { # dispatch (0: switch, 1: computed goto) -> "instructions cycles"
-    avr-gcc -std=gnu99 -Os -mmcu=atmega1284p -I. -Ivm -Inative_functions \
+    avr-gcc -std=gnu99 -Os -mmcu=atmega1284p -I. -Ivm -Inative_functions "${dspic30_config[@]}" \
         -DVM_USE_COMPUTED_GOTO="$1" "-DVM_WORKLOAD_HEADER=\"$scratch/workload.h\"" \
         -ffunction-sections -fdata-sections -Wl,--gc-sections bench/avr_workload.c \
         vm/vm.c vm/vm_debug.c vm/vm_verify.c -o "$scratch/avr-$1.elf"
@@ -157,7 +160,7 @@ for source in native_functions/nat_dsp*.c; do
     # nat_dsp_dspic30.c needs XC16's DSP builtins; the portable kernel stands for it.
     [[ $source == *_dspic30.c ]] && continue
     avr-gcc -std=gnu99 -Os -mmcu=atmega1284p -ffunction-sections -I. -Ivm -Inative_functions \
-        -c "$source" -o "$scratch/dsp.o"
+        "${dspic30_config[@]}" -c "$source" -o "$scratch/dsp.o"
     code=$(avr-size -A "$scratch/dsp.o" | awk '$1 ~ /^\.text/ { c += $2 } END { print c + 0 }')
     dsp_avr_code=$((dsp_avr_code + code))
 done
@@ -207,7 +210,7 @@ read -r arena_100_low arena_100_high arena_100_cpu_low arena_100_cpu_high arena_
 read -r arena_1000_low arena_1000_high arena_1000_cpu_low arena_1000_cpu_high arena_1000_threads \
     < <(arena_factors 1000 2)
 
-# --- the STM32F4 image (hal/stm32f4, on QEMU's netduinoplus2) ----------------
+# --- the STM32F4 image (ports/stm32f4, on QEMU's netduinoplus2) ----------------
 echo "bench: STM32F4 image" >&2
 make --no-print-directory BUILD="$build" stm32f4 "$bin/bench-qemu" >&2
 stm32f4_image=$build/stm32f4/epuck-aseba-stm32f4.elf
@@ -447,7 +450,7 @@ cores=$(nproc)
     echo "- STM32F4: \`make stm32f4\`, sizes by \`arm-none-eabi-size -A\` (code: the"
     echo "  vectors and .text; RAM: .data, .bss and the RAM the board keeps across resets"
     echo "  for its store, 16 KiB). Instructions: \`bench-qemu $stm32f4_runs\` runs the VM"
-    echo "  workload above on the harness image (tests/qemu/target) in QEMU with"
+    echo "  workload above on the harness image (tests/ports/stm32f4/target) in QEMU with"
     echo "  \`-icount shift=0\` (the guest's clock counts instructions); the image counts"
     echo "  the handler's steps one vm_step at a time, then times $stm32f4_runs runs to"
     echo "  the end with SysTick, and a loop of known instructions converts its clock to"

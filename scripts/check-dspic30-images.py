@@ -37,7 +37,7 @@ import subprocess
 import sys
 
 # The flash layout's constants that the linked programs do not carry as
-# symbols (hal/dspic30/dspic30_flash_layout.h, bootloader/boot_application.h).
+# symbols (robots/epuck/epuck_flash_layout.h, bootloader/boot_application.h).
 ROW_SPAN = 0x40
 ERASED = 0xFFFFFF
 DESCRIPTOR_MAGIC = 0xA5EB01

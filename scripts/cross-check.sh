@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Builds the portable layers (VM, node protocol, natives, firmware, drivers,
-# store and bootloader core) with avr-gcc, whose `int` is 16 bits like the
-# dsPIC's, and with arm-none-eabi-gcc for a Cortex-M4, warnings as errors,
-# against the e-puck target's configuration (hal/dspic30/dspic30_config.h),
-# and prints their code and constant-data sizes per layer.
+# Builds the portable layers (VM, node protocol, natives, store, bootloader
+# core, firmware, the robot's package and devices) with avr-gcc, whose `int`
+# is 16 bits like the dsPIC's, and with arm-none-eabi-gcc for a Cortex-M4,
+# warnings as errors, against the e-puck target's configuration
+# (boards/epuck_dspic30/epuck_dspic30_config.h), and prints their code and
+# constant-data sizes per layer.
 # Usage: cross-check.sh BUILD_DIR SOURCE...
 set -euo pipefail
 build=$1
@@ -12,7 +13,7 @@ sources=("$@")
 
 flags=(-std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef
        -ffunction-sections -fdata-sections -Ivm -Inative_functions -I.
-       '-DTARGET_CONFIG="hal/dspic30/dspic30_config.h"')
+       '-DTARGET_CONFIG="boards/epuck_dspic30/epuck_dspic30_config.h"')
 
 # The layer a source belongs to, for the size table.
 layer_of() {
@@ -20,9 +21,10 @@ layer_of() {
     vm/node*) echo "node protocol" ;;
     vm/*) echo "vm" ;;
     native_functions/nat_dsp*) echo "dsp natives" ;;
-    drivers/*) echo "drivers" ;;
+    robots/*/devices/*) echo "robot devices" ;;
+    robots/*) echo "robot package" ;;
     firmware/*) echo "firmware" ;;
-    bootloader/*) echo "storage, bootloader" ;;
+    store/* | bootloader/*) echo "storage, bootloader" ;;
     native_functions/*) echo "natives" ;;
     *) echo "other" ;;
     esac
@@ -83,9 +85,10 @@ image() { # name compiler size-tool flags...
 }
 
 # Proxies of the two dsPIC images' sizes: each image's sources as `make
-# dspic30` links them (hal/dspic30/module.mk), against simulated registers
+# dspic30` links them (ports/dspic30/module.mk), against simulated registers
 # (tests/cross/simulated_registers.c, with the portable DSP kernel for the
-# DSP engine's), unused functions dropped. linker/epuck-bootloader.gld gives
+# DSP engine's, without the reset code in dsPIC assembly), unused functions
+# dropped. linker/epuck-bootloader.gld gives
 # the bootloader 2048 instructions (bootloader/README.md turns its bytes
 # into instructions); the application's RAM must fit the chip's 8 KB.
 dspic30_image() { # image(application|bootloader) name compiler size-tool flags...
@@ -96,7 +99,8 @@ dspic30_image() { # image(application|bootloader) name compiler size-tool flags.
     local image_sources
     # shellcheck disable=SC2207 # the list is words
     image_sources=($(env -u MAKEFLAGS -u MFLAGS make -s --no-print-directory "sources-DSPIC30_$upper" |
-                         sed 's|hal/dspic30/dspic30_dsp_kernel.c|native_functions/nat_dsp_kernel.c|'))
+                         tr ' ' '\n' | grep -v '\.s$' |
+                         sed 's|ports/dspic30/dspic30_dsp_kernel.c|native_functions/nat_dsp_kernel.c|'))
     "$compiler" "${flags[@]}" "$@" -DDSPIC30_SIMULATED_REGISTERS -Wl,--gc-sections \
         "${image_sources[@]}" tests/cross/simulated_registers.c "tests/cross/${image}_image.c" \
         -o "$elf"

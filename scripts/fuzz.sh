@@ -53,19 +53,19 @@ targets=("$@")
 
 sanitize=(-fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -g -O1)
 includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba
-          '-DTARGET_CONFIG="hal/host/host_config.h"')
+          '-DTARGET_CONFIG="boards/epuck_host/epuck_host_config.h"')
 
 for target in "${targets[@]}"; do
     [ -n "${sources[$target]:-}" ] || { echo "fuzz: unknown target '$target'" >&2; exit 2; }
     out=$build/fuzz/$target
     mkdir -p "$out/obj" "$out/corpus"
     objects=()
-    # C files as the host build compiles them: the VM with computed goto (vm/module.mk).
+    # C files as the host build compiles them, with the host target's
+    # configuration (the VM with computed goto).
     for source in ${sources[$target]}; do
         object=$out/obj/$(echo "$source" | tr / _).o
         case $source in
         *.c) clang -std=gnu99 -Wall -Wextra -Werror "${sanitize[@]}" -fsanitize=fuzzer-no-link \
-                 -DVM_USE_COMPUTED_GOTO=1 \
                  "${includes[@]}" -c "$source" -o "$object" ;;
         *.cpp) clang++ -std=c++20 "${cxx_defines[@]}" -Wall -Wextra -Werror "${sanitize[@]}" \
                  -fsanitize=fuzzer-no-link "${includes[@]}" -c "$source" -o "$object" ;;

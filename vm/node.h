@@ -28,6 +28,7 @@
 #include <stdint.h>
 
 #include "node_config.h"
+#include "node_crc.h"
 #include "node_protocol.h"
 #include "vm.h"
 
@@ -165,9 +166,5 @@ uint16_t node_description_fingerprint(const node_description *description,
                                       uint16_t bytecode_size,
                                       uint16_t stack_size,
                                       uint16_t variables_size);
-
-// CRC-16/XMODEM (polynomial 0x1021, initial 0) of `count` bytes, continued
-// from `crc`.
-uint16_t node_crc16(uint16_t crc, const uint8_t *bytes, uint16_t count);
 
 #endif

@@ -1,9 +1,6 @@
-// CRC-16/XMODEM, shared by the description fingerprint (protocol.md §9) and
-// the bootloader's checks of stored images. In a file of its own so that
-// the bootloader and the flash tools link the CRC without the node's
-// description, which needs the VM.
+// CRC-16/XMODEM (node_crc.h).
 
-#include "node.h"
+#include "node_crc.h"
 
 #define BYTE_BITS        8
 #define CRC16_POLYNOMIAL 0x1021

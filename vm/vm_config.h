@@ -1,25 +1,26 @@
-// Feature switches of the VM, with their defaults. A target sets them in its
-// one configuration header, which every firmware and host build names with
-// TARGET_CONFIG (docs/porting.md); the VM alone also builds without one.
-// Memory sizes are not here: the node gives the VM its memory.
+// The VM's switches. They are the target's, in its one configuration header
+// (boards/<board>/<board>_config.h), which every firmware and host build
+// names with TARGET_CONFIG (docs/porting.md); this file includes it and
+// stops a build whose target does not give them. Memory sizes are not
+// here: the node gives the VM its memory.
+//
+//   VM_USE_COMPUTED_GOTO     1: dispatch through a table of label addresses
+//                            (a GNU extension), 0: through a switch, the
+//                            reference (XC16's support of `&&label` is
+//                            unverified, so the dsPIC target keeps it off)
+//   VM_MAX_NATIVE_ARGUMENTS  most stack words a native function may take
+//                            (parameters and size words)
 
 #ifndef VM_CONFIG_H
 #define VM_CONFIG_H
 
-#ifdef TARGET_CONFIG
+#ifndef TARGET_CONFIG
+#error "TARGET_CONFIG must name the target's configuration header (docs/porting.md)"
+#endif
 #include TARGET_CONFIG
-#endif
 
-// Dispatch through a table of label addresses (a GNU extension) instead of a
-// switch. The switch is the reference: XC16's support of `&&label` is
-// unverified, so the dsPIC target keeps it off.
-#ifndef VM_USE_COMPUTED_GOTO
-#define VM_USE_COMPUTED_GOTO 0
-#endif
-
-// Most stack words a native function may take (parameters and size words).
-#ifndef VM_MAX_NATIVE_ARGUMENTS
-#define VM_MAX_NATIVE_ARGUMENTS 16
+#if !defined(VM_USE_COMPUTED_GOTO) || !defined(VM_MAX_NATIVE_ARGUMENTS)
+#error "the target's configuration must give VM_USE_COMPUTED_GOTO and VM_MAX_NATIVE_ARGUMENTS"
 #endif
 
 #endif

@@ -11,7 +11,7 @@
 #include "tools/compiler/target_presets.hpp"
 
 extern "C" {
-#include "firmware/epuck_description.h"
+#include "robots/epuck/epuck_description.h"
 #include "vm/node_protocol.h"
 }
 

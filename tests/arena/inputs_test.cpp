@@ -13,7 +13,7 @@
 #include "arena_test_support.hpp"
 
 extern "C" {
-#include "hal/host/host_config.h"
+#include "boards/epuck_host/epuck_host_config.h"
 }
 
 using namespace aseba::arena;

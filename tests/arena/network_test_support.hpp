@@ -19,7 +19,7 @@
 #include <vector>
 
 extern "C" {
-#include "hal/host/host_board.h"
+#include "boards/epuck_host/host_board.h"
 }
 
 namespace network_test

@@ -18,7 +18,7 @@
 
 extern "C" {
 #include "bootloader/bootloader.h"
-#include "hal/host/host_board.h"
+#include "boards/epuck_host/host_board.h"
 }
 
 namespace

@@ -1,5 +1,5 @@
 // linker/epuck-app.gld and linker/epuck-bootloader.gld against the flash
-// layout of hal/dspic30/dspic30_flash_layout.h: the same boundaries written twice,
+// layout of robots/epuck/epuck_flash_layout.h: the same boundaries written twice,
 // checked to agree, and the vector tables against the fact sheet's order
 // (hardware §1.7).
 
@@ -14,7 +14,7 @@
 
 extern "C" {
 #include "bootloader/boot_application.h"
-#include "hal/dspic30/dspic30_flash_layout.h"
+#include "robots/epuck/epuck_flash_layout.h"
 }
 
 namespace

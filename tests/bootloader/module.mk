@@ -1,11 +1,6 @@
-# Tests of the fail-safe record store, the serial bootloader and the HEX
-# reader and writer, the e-puck images, and the linker scripts against the
-# flash layout, on the host board with power cuts.
-TESTS += bootloader_store_test
-bootloader_store_test_SOURCES := tests/bootloader/store_test.cpp
-bootloader_store_test_LIBS := aseba_bootloader aseba_host_board aseba_node
-bootloader_store_test_LDLIBS := -lgtest -lgtest_main -pthread
-
+# Tests of the serial bootloader, and of the HEX reader and writer, the
+# e-puck images and the linker scripts against the flash layout
+# (tools/flash, linker/: tests/README.md), on the host board with power cuts.
 TESTS += bootloader_hex_test
 bootloader_hex_test_SOURCES := tests/bootloader/hex_test.cpp tests/bootloader/tiny_bootloader_test.cpp \
                               tests/bootloader/epuck_image_test.cpp tests/bootloader/test_images.cpp

@@ -1,7 +1,7 @@
 // A simulated e-puck with the factory Tiny Bootloader, written from the
 // hardware fact sheet (§4.1-4.3), for the tests of the uploader
 // (tools/flash/tiny_upload.hpp). The robot's program flash is a host board's
-// (hal/host/host_board.h, with its power cuts); it talks over a
+// (boards/epuck_host/host_board.h, with its power cuts); it talks over a
 // pseudo-terminal, so the real uploader opens the slave side as it opens
 // /dev/rfcomm0 (termios included).
 //
@@ -29,7 +29,7 @@
 #include <thread>
 
 extern "C" {
-#include "hal/host/host_board.h"
+#include "boards/epuck_host/host_board.h"
 }
 
 namespace aseba::test

@@ -97,7 +97,7 @@ TEST(VariableReferences, Syntax)
 }
 
 // The e-puck's named variables in memory order (hardware/epuck1.md §6.1,
-// firmware/epuck_description.h): id, source, args[32], leftSpeed,
+// robots/epuck/epuck_description.h): id, source, args[32], leftSpeed,
 // rightSpeed, leds[8], prox[8], ambiant[8], acc[3], camLine, camR[60] ...
 TEST(VariableReferences, ResolvedOnTheEpuck)
 {

@@ -134,7 +134,7 @@ TEST_F(Console, NodesListsAndDescribesTheRobot)
     ASSERT_EQ(lines_of(nodes.out).size(), 1u) << nodes.out;
     EXPECT_TRUE(contains(nodes.out, "node 1 \"e-puck\"")) << nodes.out;
     EXPECT_TRUE(contains(nodes.out, "protocol 5"));
-    EXPECT_TRUE(contains(nodes.out, "bytecode 1024 words")); // EPUCK_BYTECODE_WORDS
+    EXPECT_TRUE(contains(nodes.out, "bytecode 1024 words")); // FIRMWARE_BYTECODE_WORDS
 
     CommandResult described = aseba({ "nodes", "--describe" });
     ASSERT_EQ(described.exit_code, 0) << described.err;

@@ -15,7 +15,7 @@
 
 extern "C" {
 #include "bootloader/boot_application.h"
-#include "hal/host/host_board.h"
+#include "boards/epuck_host/host_board.h"
 }
 
 using namespace console_test;

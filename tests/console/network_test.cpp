@@ -22,7 +22,7 @@ using console_test::Emulator;
 namespace
 {
 
-// The e-puck as firmware/epuck_description.h describes it, through the
+// The e-puck as robots/epuck/epuck_description.h describes it, through the
 // compiler's preset (a path that does not go through the wire).
 const TargetDescription &expected_epuck()
 {

@@ -6,7 +6,7 @@
 
 #include <stdint.h>
 
-#include "hal/dspic30/dspic30_registers.h"
+#include "ports/dspic30/dspic30_registers.h"
 
 #define REGISTER_WORDS 0x400u // SFR space: 2 KB
 #define REGISTER_MASK  (REGISTER_WORDS - 1u)

@@ -1,6 +1,6 @@
 // libFuzzer target for the parsers of files users hand to the tools: Intel
 // HEX images (tools/flash, what `aseba flash`, `epuck-emu --firmware` and
-// `epuck-image` read) and arena files (hal/host/arena_file, `epuck-emu
+// `epuck-image` read) and arena files (boards/epuck_host/arena_file, `epuck-emu
 // --arena`). An input that starts with ':' is a HEX file, any other an arena
 // file. It stops on any sanitizer report, on an exception other than the
 // parser's own error, or when an image that was read does not survive what

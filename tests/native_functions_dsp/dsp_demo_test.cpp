@@ -25,7 +25,7 @@ constexpr uint16_t samples = 32;
 constexpr uint16_t local_event_base = 0xFFFE; // first local event (init is 0xFFFF)
 
 // The e-puck target, which exports the DSP natives right after the standard
-// ones (firmware/epuck_natives.c).
+// ones (robots/epuck/epuck_natives.c).
 aseba::TargetDescription epuck_with_dsp()
 {
     auto target = aseba::epuck_target();

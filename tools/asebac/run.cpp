@@ -8,7 +8,7 @@
 #include "tools/compiler/target_presets.hpp"
 
 extern "C" {
-#include "firmware/epuck_natives.h"
+#include "robots/epuck/epuck_natives.h"
 #include "nat_standard.h"
 #include "vm.h"
 #include "vm_opcodes.h"

@@ -23,4 +23,4 @@ aseba_compiler_SOURCES := \
 # target descriptions by nlohmann-json (header only).
 aseba_compiler_LDLIBS := -lpugixml
 # The e-puck preset lists the firmware's own native table, so both agree.
-aseba_compiler_SOURCES += firmware/epuck_natives.c
+aseba_compiler_SOURCES += robots/epuck/epuck_natives.c

@@ -1,12 +1,13 @@
 // The built-in targets. The e-puck preset is read from the same lists the
-// firmware compiles (firmware/epuck_description.h, the natives' C table), so
+// firmware compiles (robots/epuck/epuck_description.h, the natives' C table,
+// the memory sizes of the host target's configuration, which vm.h includes), so
 // that the compiler and the robot cannot disagree.
 
 #include "target_presets.hpp"
 
 extern "C" {
-#include "firmware/epuck_description.h"
-#include "firmware/epuck_natives.h"
+#include "robots/epuck/epuck_description.h"
+#include "robots/epuck/epuck_natives.h"
 #include "nat_standard.h"
 }
 
@@ -69,8 +70,8 @@ TargetDescription epuck_target()
     TargetDescription target;
     target.name = EPUCK_NAME;
     target.protocol_version = PROTOCOL_VERSION;
-    target.bytecode_size = EPUCK_BYTECODE_WORDS;
-    target.stack_size = EPUCK_STACK_WORDS;
+    target.bytecode_size = FIRMWARE_BYTECODE_WORDS;
+    target.stack_size = FIRMWARE_STACK_WORDS;
     unsigned named_words = 0;
 #define EPUCK_ADD_VARIABLE(identifier, name, size)                                                 \
     target.named_variables.push_back({ name, size });                                              \
@@ -81,7 +82,7 @@ TargetDescription epuck_target()
     target.local_events.push_back({ name, description });
     EPUCK_LOCAL_EVENT_LIST(EPUCK_ADD_EVENT)
 #undef EPUCK_ADD_EVENT
-    target.variables_size = static_cast<uint16_t>(named_words + EPUCK_FREE_WORDS);
+    target.variables_size = static_cast<uint16_t>(named_words + FIRMWARE_FREE_VARIABLE_WORDS);
     target.native_functions = native_functions(epuck_native_table);
     return target;
 }

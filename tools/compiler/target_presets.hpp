@@ -24,7 +24,7 @@ std::vector<NativeFunction> native_functions(const vm_native_table &table);
 // The 30 standard natives (language.md §13.1), from the firmware's C table.
 std::vector<NativeFunction> standard_native_functions();
 
-// Our e-puck, built from firmware/epuck_description.h and the standard natives.
+// Our e-puck, built from robots/epuck/epuck_description.h and the standard natives.
 TargetDescription epuck_target();
 
 // The reference's asebadummynode "dummynode-0".

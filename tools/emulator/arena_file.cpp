@@ -29,7 +29,7 @@ constexpr double default_side = 100;
 constexpr double room_per_robot = 20;
 constexpr double default_area_radius = 14; // fraction of a 100 cm side, scaled
 
-// The microphones are sampled 16384 times a second (drivers/epuck): a tone
+// The microphones are sampled 16384 times a second (robots/epuck): a tone
 // above half that would alias.
 constexpr double highest_frequency = 8192;
 constexpr unsigned selector_positions = 16;

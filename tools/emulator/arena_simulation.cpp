@@ -117,7 +117,7 @@ host_robot &ArenaSimulation::robot(size_t index)
     return *robots_.at(index);
 }
 
-epuck_firmware &ArenaSimulation::firmware(size_t index)
+firmware_state &ArenaSimulation::firmware(size_t index)
 {
     return robots_.at(index)->firmware;
 }

@@ -24,7 +24,7 @@
 #include "worker_pool.hpp"
 
 extern "C" {
-#include "hal/host/host_robot.h"
+#include "ports/host/host_robot.h"
 }
 
 namespace aseba::arena
@@ -60,7 +60,7 @@ class ArenaSimulation
         return workers_.threads();
     }
     host_robot &robot(size_t index);
-    epuck_firmware &firmware(size_t index);
+    firmware_state &firmware(size_t index);
     hal_board &board(size_t index);
     EnkiWorld &world()
     {

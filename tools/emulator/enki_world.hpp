@@ -36,7 +36,7 @@
 #include "sound_field.hpp"
 
 extern "C" {
-#include "hal/host/host_world.h"
+#include "boards/epuck_host/host_world.h"
 }
 
 namespace aseba::arena

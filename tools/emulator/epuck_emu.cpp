@@ -35,7 +35,7 @@
 #include "tools/compiler/target_presets.hpp"
 
 extern "C" {
-#include "hal/host/host_robot.h"
+#include "ports/host/host_robot.h"
 }
 
 namespace

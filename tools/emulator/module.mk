@@ -1,4 +1,4 @@
-# The emulator: simulated e-pucks (hal/host) joined in one TCP network, what
+# The emulator: simulated e-pucks (boards/epuck_host) joined in one TCP network, what
 # their memories hold before they start, and the arena.
 
 # The network that joins host boards and tools, as a Bluetooth switch would.
@@ -20,7 +20,7 @@ aseba_arena_SOURCES := tools/emulator/arena_file.cpp tools/emulator/enki_world.c
 # epuck-emu: the e-puck firmware image running on a PC.
 PROGRAMS += epuck-emu
 epuck-emu_SOURCES := tools/emulator/epuck_emu.cpp
-epuck-emu_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_epuck_firmware \
-                  aseba_bootloader aseba_epuck_drivers aseba_host_board aseba_compiler aseba_node \
+epuck-emu_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_firmware \
+                  aseba_epuck aseba_store aseba_bootloader aseba_host_board aseba_compiler aseba_node \
                   aseba_vm aseba_natives
 epuck-emu_LDLIBS := -lenki -pthread

@@ -33,7 +33,7 @@
 #include <vector>
 
 extern "C" {
-#include "hal/host/host_board.h"
+#include "boards/epuck_host/host_board.h"
 }
 
 namespace aseba::host

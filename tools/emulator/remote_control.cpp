@@ -5,7 +5,7 @@
 #include <algorithm>
 
 extern "C" {
-#include "hal/host/host_config.h"
+#include "boards/epuck_host/epuck_host_config.h"
 }
 
 namespace aseba::arena

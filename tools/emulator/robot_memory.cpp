@@ -14,7 +14,7 @@
 
 extern "C" {
 #include "bootloader/boot_application.h"
-#include "bootloader/bytecode_store.h"
+#include "store/bytecode_store.h"
 }
 
 namespace aseba::host
@@ -56,8 +56,8 @@ void install_application(hal_board &board, const flash::ProgramImage &image)
 
 void store_program(hal_board &board, const std::vector<uint16_t> &bytecode)
 {
-    if (bytecode.size() > EPUCK_BYTECODE_WORDS ||
-        !epuck_store_save_bytecode(&board, bytecode.data(), uint16_t(bytecode.size())))
+    if (bytecode.size() > FIRMWARE_BYTECODE_WORDS ||
+        !store_save_bytecode(&board, bytecode.data(), uint16_t(bytecode.size())))
         throw std::runtime_error("the program (" + std::to_string(bytecode.size()) +
                                  " words) does not fit in the bytecode store");
 }

@@ -12,7 +12,7 @@
 #include "tools/flash/hex_image.hpp"
 
 extern "C" {
-#include "hal/host/host_robot.h"
+#include "ports/host/host_robot.h"
 }
 
 namespace aseba::host

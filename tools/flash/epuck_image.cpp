@@ -7,7 +7,7 @@
 
 extern "C" {
 #include "bootloader/boot_application.h"
-#include "hal/dspic30/dspic30_flash_layout.h"
+#include "robots/epuck/epuck_flash_layout.h"
 }
 
 namespace aseba::flash

@@ -1,6 +1,6 @@
 // The two images `make dspic30` delivers, from the XC16 builds of the
 // application (linker/epuck-app.gld) and of the Aseba bootloader
-// (linker/epuck-bootloader.gld), laid out as hal/dspic30/dspic30_flash_layout.h says:
+// (linker/epuck-bootloader.gld), laid out as robots/epuck/epuck_flash_layout.h says:
 //
 //   epuck-aseba.hex          the application and its descriptor: what the
 //                            Aseba bootloader flashes (asebacmd whex)

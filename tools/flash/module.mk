@@ -13,7 +13,7 @@ LIBRARIES += aseba_tiny_upload
 aseba_tiny_upload_SOURCES := tools/flash/tiny_upload.cpp tools/flash/tiny_serial_link.cpp \
                              tools/flash/install_command.cpp
 
-# epuck-image: the last step of `make dspic30` (hal/dspic30/module.mk), and
+# epuck-image: the last step of `make dspic30` (ports/dspic30/module.mk), and
 # `epuck-image install` for the first installation on a robot.
 PROGRAMS += epuck-image
 epuck-image_SOURCES := tools/flash/epuck_image_main.cpp

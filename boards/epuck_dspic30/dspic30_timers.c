@@ -1,0 +1,171 @@
+// The HAL's periodic timers on the chip's 16-bit Timers 2 to 5 (§2.2,
+// §3.13): the agenda on Timer2, the motors on Timer5 (left) and Timer4
+// (right) as the library does, and Timer3 spare.
+
+#include "epuck_dspic30_board.h"
+#include "ports/dspic30/dspic30_registers.h"
+
+#define MICROSECONDS_PER_SECOND 1000000ul
+#define TIMER_REGISTER_MAX      0xFFFFul
+#define PRESCALER_COUNT         4u
+#define LARGEST_PRESCALE        256u
+
+// The longest period the board promises fits the largest prescaler.
+typedef char longest_period_fits[(uint64_t)EPUCK_TIMER_MAX_PERIOD_US * DSPIC30_FCY_HZ <=
+                                     (uint64_t)(TIMER_REGISTER_MAX + 1u) * LARGEST_PRESCALE *
+                                       MICROSECONDS_PER_SECOND
+                                   ? 1
+                                   : -1];
+// counts_in's limits: periods of at most a second, and the instruction
+// clock a whole number of prescaled ticks per second.
+typedef char period_fits_counts_in[EPUCK_TIMER_MAX_PERIOD_US <= MICROSECONDS_PER_SECOND ? 1 : -1];
+typedef char clock_divides_by_prescales[DSPIC30_FCY_HZ % LARGEST_PRESCALE == 0 ? 1 : -1];
+
+// The registers of one chip timer.
+typedef struct timer_registers {
+    uint16_t control;
+    uint16_t period;
+    uint16_t count;
+    uint16_t flags;  // IFSn
+    uint16_t enable; // IECn
+    uint16_t bit;
+    uint16_t priority; // IPCn
+    uint16_t priority_shift;
+} timer_registers;
+
+static const timer_registers timer_map[EPUCK_TIMER_COUNT] = {
+    [EPUCK_TIMER_AGENDA] = { DSPIC30_T2CON,
+                             DSPIC30_PR2,
+                             DSPIC30_TMR2,
+                             DSPIC30_IFS0,
+                             DSPIC30_IEC0,
+                             DSPIC30_IRQ0_T2,
+                             DSPIC30_IPC_T2,
+                             DSPIC30_SHIFT_T2 },
+    [EPUCK_TIMER_MOTOR_LEFT] = { DSPIC30_T5CON,
+                                 DSPIC30_PR5,
+                                 DSPIC30_TMR5,
+                                 DSPIC30_IFS1,
+                                 DSPIC30_IEC1,
+                                 DSPIC30_IRQ1_T5,
+                                 DSPIC30_IPC_T5,
+                                 DSPIC30_SHIFT_T5 },
+    [EPUCK_TIMER_MOTOR_RIGHT] = { DSPIC30_T4CON,
+                                  DSPIC30_PR4,
+                                  DSPIC30_TMR4,
+                                  DSPIC30_IFS1,
+                                  DSPIC30_IEC1,
+                                  DSPIC30_IRQ1_T4,
+                                  DSPIC30_IPC_T4,
+                                  DSPIC30_SHIFT_T4 },
+    [EPUCK_TIMER_SPARE] = { DSPIC30_T3CON,
+                            DSPIC30_PR3,
+                            DSPIC30_TMR3,
+                            DSPIC30_IFS0,
+                            DSPIC30_IEC0,
+                            DSPIC30_IRQ0_T3,
+                            DSPIC30_IPC_T3,
+                            DSPIC30_SHIFT_T3 },
+};
+
+// Prescale of each TCKPS code.
+static const uint16_t prescales[PRESCALER_COUNT] = { 1, 8, 64, LARGEST_PRESCALE };
+
+// round(microseconds * hz / 10^6) in 32-bit arithmetic, exactly: the
+// dsPIC has no 64-bit helpers (dspic30_runtime.c). With hz split into its
+// millions, thousands and units, microseconds * hz = whole * 10^6 +
+// thousands * 10^3 + units, and for microseconds <= 10^6 every part fits.
+static uint32_t counts_in(uint32_t microseconds, uint32_t hz)
+{
+    uint32_t whole = microseconds * (hz / MICROSECONDS_PER_SECOND);
+    uint32_t thousands = microseconds * (hz / 1000ul % 1000ul);
+    uint32_t units = microseconds * (hz % 1000ul);
+    return whole + thousands / 1000ul +
+           ((thousands % 1000ul) * 1000ul + units + MICROSECONDS_PER_SECOND / 2u) /
+             MICROSECONDS_PER_SECOND;
+}
+
+bool dspic30_timer_period(uint32_t period_microseconds,
+                          uint16_t *period_register,
+                          uint16_t *prescaler_code)
+{
+    uint16_t code;
+
+    if (period_microseconds < EPUCK_TIMER_MIN_PERIOD_US ||
+        period_microseconds > EPUCK_TIMER_MAX_PERIOD_US)
+        return false;
+    for (code = 0; code < PRESCALER_COUNT; code++) {
+        // Timer counts in the period, rounded to the nearest.
+        uint32_t counts = counts_in(period_microseconds, DSPIC30_FCY_HZ / prescales[code]);
+        if (counts >= DSPIC30_TIMER_PERIOD_OFFSET &&
+            counts - DSPIC30_TIMER_PERIOD_OFFSET <= TIMER_REGISTER_MAX) {
+            *period_register = (uint16_t)(counts - DSPIC30_TIMER_PERIOD_OFFSET);
+            *prescaler_code = code;
+            return true;
+        }
+    }
+    return false;
+}
+
+void dspic30_timers_init(hal_board *board)
+{
+    uint16_t i;
+
+    for (i = 0; i < EPUCK_TIMER_COUNT; i++) {
+        const timer_registers *timer = &timer_map[i];
+        board->timers[i].callback = 0;
+        board->timers[i].context = 0;
+        dspic30_write(timer->control, 0); // off, internal clock, 16-bit
+        dspic30_clear_bits(timer->enable, timer->bit);
+        dspic30_clear_bits(timer->flags, timer->bit);
+        dspic30_set_priority(timer->priority, timer->priority_shift, DSPIC30_PRIORITY_TIMERS);
+    }
+}
+
+bool epuck_board_timer_start(hal_board *board,
+                             epuck_timer timer,
+                             uint32_t period_microseconds,
+                             epuck_callback callback,
+                             void *context)
+{
+    const timer_registers *registers;
+    uint16_t period_register;
+    uint16_t prescaler_code;
+
+    if ((uint16_t)timer >= EPUCK_TIMER_COUNT ||
+        !dspic30_timer_period(period_microseconds, &period_register, &prescaler_code))
+        return false;
+    registers = &timer_map[timer];
+    epuck_board_timer_stop(board, timer);
+    board->timers[timer].callback = callback;
+    board->timers[timer].context = context;
+    dspic30_write(registers->count, 0);
+    dspic30_write(registers->period, period_register);
+    dspic30_set_bits(registers->enable, registers->bit);
+    dspic30_write(registers->control,
+                  (uint16_t)(DSPIC30_TCON_TON | (prescaler_code << DSPIC30_TCON_TCKPS_SHIFT)));
+    return true;
+}
+
+void epuck_board_timer_stop(hal_board *board, epuck_timer timer)
+{
+    const timer_registers *registers;
+
+    if ((uint16_t)timer >= EPUCK_TIMER_COUNT)
+        return;
+    registers = &timer_map[timer];
+    dspic30_write(registers->control, 0);
+    dspic30_clear_bits(registers->enable, registers->bit);
+    dspic30_clear_bits(registers->flags, registers->bit);
+    board->timers[timer].callback = 0;
+}
+
+void dspic30_on_timer(hal_board *board, epuck_timer timer)
+{
+    const timer_registers *registers = &timer_map[timer];
+    dspic30_timer_slot *slot = &board->timers[timer];
+
+    dspic30_clear_bits(registers->flags, registers->bit);
+    if (slot->callback)
+        slot->callback(slot->context);
+}

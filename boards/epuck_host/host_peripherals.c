@@ -1,0 +1,208 @@
+// The host board's e-puck peripherals (robots/epuck/epuck_board.h): ADC,
+// pins, I2C and the camera's pixel port, each answered by the board's world
+// at the board's current time.
+
+#include "host_board.h"
+
+#define SCAN_PERIOD_CYCLES (HOST_CYCLES_PER_SECOND / EPUCK_ADC_SCAN_RATE_HZ)
+
+uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
+{
+    if (channel >= EPUCK_ADC_CHANNEL_COUNT || board->adc_scan_mask != 0)
+        return 0;
+    return board->world->adc_read(board->world->context, channel, board->cycles);
+}
+
+static uint8_t scan_channel_count(uint16_t mask)
+{
+    uint8_t count = 0;
+    for (; mask != 0; mask = (uint16_t)(mask & (mask - 1u)))
+        count++;
+    return count;
+}
+
+static bool scan_mask_supported(uint16_t mask)
+{
+    uint8_t count = scan_channel_count(mask);
+    return count >= EPUCK_ADC_SCAN_MIN_CHANNELS && count <= EPUCK_ADC_SCAN_MAX_CHANNELS;
+}
+
+bool epuck_board_adc_scan_start(hal_board *board,
+                                uint16_t channel_mask,
+                                epuck_adc_scan_callback callback,
+                                void *context)
+{
+    if (!scan_mask_supported(channel_mask))
+        return false;
+    board->adc_scan_callback = callback;
+    board->adc_scan_run_callback = 0;
+    board->adc_scan_context = context;
+    board->adc_scan_mask = channel_mask;
+    board->adc_scan_channels = scan_channel_count(channel_mask);
+    board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
+    return true;
+}
+
+bool epuck_board_adc_scan_select(hal_board *board, uint16_t channel_mask)
+{
+    if (board->adc_scan_mask == 0 || !scan_mask_supported(channel_mask))
+        return false;
+    board->adc_scan_mask = channel_mask;
+    board->adc_scan_channels = scan_channel_count(channel_mask);
+    return true;
+}
+
+void epuck_board_adc_scan_stop(hal_board *board)
+{
+    board->adc_scan_mask = 0;
+    board->adc_scan_callback = 0;
+    board->adc_scan_run_callback = 0;
+}
+
+void epuck_board_adc_scan_runs(hal_board *board, epuck_adc_scan_run_callback callback)
+{
+    board->adc_scan_run_callback = callback;
+}
+
+// The values of the scanned channels at the board's time, into `values`;
+// returns how many.
+static uint8_t read_scan(hal_board *board, uint16_t *values)
+{
+    const host_world *world = board->world;
+    uint8_t count = 0;
+    uint8_t channel;
+    uint16_t mask;
+
+    if (world->adc_read_channels) {
+        world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
+        count = board->adc_scan_channels;
+    } else {
+        // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
+        for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
+            channel = (uint8_t)__builtin_ctz(mask);
+            values[count++] = world->adc_read(world->context, channel, board->cycles);
+        }
+    }
+    return count;
+}
+
+void host_board_run_adc_scans(hal_board *board, uint64_t until);
+
+void host_board_run_adc_scans(hal_board *board, uint64_t until)
+{
+    const host_world *world = board->world;
+    uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
+    uint8_t count = read_scan(board, values);
+    uint64_t due = (until - board->adc_next_due) / SCAN_PERIOD_CYCLES + 1u;
+    uint16_t taken;
+
+    if (due > 1u && board->adc_scan_run_callback && world->adc_channels_steady &&
+        world->adc_channels_steady(world->context, board->adc_scan_mask)) {
+        // The scans due up to `until` all read what this one reads.
+        taken = board->adc_scan_run_callback(
+          board->adc_scan_context, values, count, (uint16_t)(due < UINT16_MAX ? due : UINT16_MAX));
+        if (taken < 1u)
+            taken = 1u;
+        board->cycles = board->adc_next_due + (uint64_t)(taken - 1u) * SCAN_PERIOD_CYCLES;
+        board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
+        return;
+    }
+    board->adc_next_due += SCAN_PERIOD_CYCLES;
+    if (board->adc_scan_callback)
+        board->adc_scan_callback(board->adc_scan_context, values, count);
+}
+
+void epuck_board_pin_write(hal_board *board, epuck_pin pin, bool high)
+{
+    if ((uint16_t)pin >= EPUCK_PIN_FIRST_INPUT)
+        return;
+    board->outputs[pin] = high;
+    board->world->pin_written(board->world->context, pin, high, board->cycles);
+}
+
+bool epuck_board_pin_read(hal_board *board, epuck_pin pin)
+{
+    if ((uint16_t)pin >= EPUCK_PIN_COUNT)
+        return false;
+    if (pin < EPUCK_PIN_FIRST_INPUT)
+        return board->outputs[pin];
+    return board->world->pin_read(board->world->context, pin, board->cycles);
+}
+
+bool epuck_board_pin_watch_falling_edge(hal_board *board,
+                                        epuck_pin pin,
+                                        epuck_callback callback,
+                                        void *context)
+{
+    // As on the chip, only the remote receiver's line has an edge interrupt.
+    if (pin != EPUCK_PIN_REMOTE)
+        return false;
+    board->edge_callback[pin] = callback;
+    board->edge_context[pin] = context;
+    board->configuration_changes++;
+    board->last_input[pin] = epuck_board_pin_read(board, pin);
+    return true;
+}
+
+void epuck_board_pin_unwatch(hal_board *board, epuck_pin pin)
+{
+    if ((uint16_t)pin < EPUCK_PIN_COUNT)
+        board->edge_callback[pin] = 0;
+    board->configuration_changes++;
+}
+
+void host_board_input_changed(hal_board *board, epuck_pin pin)
+{
+    bool level;
+
+    if ((uint16_t)pin < EPUCK_PIN_FIRST_INPUT || (uint16_t)pin >= EPUCK_PIN_COUNT)
+        return;
+    level = epuck_board_pin_read(board, pin);
+    if (board->last_input[pin] && !level && board->edge_callback[pin])
+        board->edge_callback[pin](board->edge_context[pin]);
+    board->last_input[pin] = level;
+}
+
+bool epuck_board_i2c_write(hal_board *board,
+                           uint8_t device,
+                           uint8_t reg,
+                           const uint8_t *bytes,
+                           uint16_t count)
+{
+    return board->world->i2c_write(board->world->context, device, reg, bytes, count);
+}
+
+bool epuck_board_i2c_read(hal_board *board,
+                          uint8_t device,
+                          uint8_t reg,
+                          uint8_t *bytes,
+                          uint16_t count)
+{
+    return board->world->i2c_read(board->world->context, device, reg, bytes, count);
+}
+
+void epuck_board_camera_start(hal_board *board, uint16_t row, uint8_t *bytes, uint16_t pixels)
+{
+    board->camera_bytes = bytes;
+    board->camera_row = row;
+    board->camera_pixels = pixels;
+}
+
+epuck_camera_step epuck_board_camera_step(hal_board *board)
+{
+    uint16_t i;
+
+    // The world's camera answers at once: the row is read at the first step.
+    if (board->camera_bytes == 0)
+        return EPUCK_CAMERA_FAILED;
+    // Every second pixel: its bytes are the row's 2 × EPUCK_CAMERA_PIXEL_BYTES × p onwards.
+    for (i = 0; i < board->camera_pixels * EPUCK_CAMERA_PIXEL_BYTES; i++) {
+        uint16_t pixel = (uint16_t)(i / EPUCK_CAMERA_PIXEL_BYTES);
+        uint16_t in_row =
+          (uint16_t)(2u * pixel * EPUCK_CAMERA_PIXEL_BYTES + i % EPUCK_CAMERA_PIXEL_BYTES);
+        board->camera_bytes[i] = board->world->camera_byte(
+          board->world->context, board->camera_row, in_row, board->cycles);
+    }
+    board->camera_bytes = 0;
+    return EPUCK_CAMERA_DONE;
+}
