@@ -19,7 +19,7 @@ import tempfile
 EXPECTED = {
     "run": {"build"},
     "all": {"build", "test", "bench", "dspic30", "cross"},
-    "test": {"build", "test", "dspic30", "cross"},  # the STM32F4 image of its QEMU tests
+    "test": {"build", "test", "dspic30"},  # the ARM compiler of its QEMU tests is in "test"
     "bench": {"build", "test", "bench", "dspic30"},
     "experiment": {"build", "experiment"},
     "cross-check": {"build", "cross"},
