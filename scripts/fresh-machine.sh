@@ -30,7 +30,11 @@ mounted=()
 # Unmounts what was mounted, innermost first, and only then removes the
 # root: never remove a tree with the machine's /dev bound inside it.
 cleanup() {
-    local i
+    local i process
+    # What still runs in the root (the command was interrupted) goes first.
+    for process in /proc/[0-9]*; do
+        [ "$(readlink "$process/root" 2>/dev/null)" = "$root" ] && kill -9 "${process#/proc/}" 2>/dev/null
+    done
     for ((i = ${#mounted[@]} - 1; i >= 0; i--)); do
         umount -l "${mounted[i]}" 2>/dev/null || true
     done
