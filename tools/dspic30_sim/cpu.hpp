@@ -114,6 +114,12 @@ class Cpu
     void raise_interrupt(int irq);
     // Whether the flag of IRQ `irq` is set.
     bool interrupt_flag(int irq) const;
+    // An oscillator failure as the fail-safe clock monitor meets it (fault
+    // injection: the simulator has no clock that fails): with FOSC.FCKSM = 00
+    // sets OSCCON.CF, clears OSWEN, raises the oscillator-failure trap and
+    // returns true; with the monitor off (the e-puck's setting) returns false
+    // and changes nothing (the real chip would stop).
+    bool fail_oscillator();
     // Tells the CPU that a peripheral's next_event() moved earlier.
     void reschedule()
     {
