@@ -23,6 +23,7 @@ constexpr uint32_t code_base = 0x100;
 constexpr int step_limit = 200000;
 
 // Vectors (research notes §8.1, fact sheet §1.7): traps 1-4, IRQ n at 8 + n.
+constexpr int oscillator_failure_vector = 1;
 constexpr int address_error_vector = 2;
 constexpr int stack_error_vector = 3;
 constexpr int t1_vector = 8 + 3;
@@ -354,6 +355,45 @@ spin:   bra spin
     ASSERT_FALSE(result.traps.empty());
     EXPECT_EQ(result.traps.front().trap, Trap::address_error);
     EXPECT_EQ(result.traps.front().pc, m.symbol("start") + 2);
+}
+
+// DS70138G §20.2.7 (the fail-safe clock monitor, FOSC.FCKSM = 00): a clock
+// failure sets OSCCON.CF and takes the oscillator-failure trap, vector 1, at
+// level 14 (INTCON1.OSCFAIL); with the monitor off nothing traps.
+TEST(Traps, OscillatorFailureWithClockMonitor)
+{
+    const std::string source = R"(
+start:  inc w5, w5
+        bra start
+trap:   mov 0x0080, w4          ; INTCON1
+        mov 0x0742, w6          ; OSCCON
+        mov 0x0042, w7          ; SR: the trap's level in IPL
+        mov 0x0044, w8          ; CORCON: IPL3
+        mov #0xCAFE, w9
+        bclr 0x0080, #1
+done:   bra done
+)";
+    constexpr uint32_t monitor_on = 0x3FE6; // FCKSM = 00, the e-puck's XT with PLL x8
+    constexpr uint32_t monitor_off = 0xBFE6;
+    Machine off(source);
+    off.cpu().program(fosc_address, monitor_off);
+    off.cpu().run(off.cpu().cycles() + 100);
+    EXPECT_FALSE(off.cpu().fail_oscillator());
+    off.cpu().run(off.cpu().cycles() + 100);
+    EXPECT_EQ(off.data(sfr::INTCON1) & intcon1::OSCFAIL, 0);
+    EXPECT_NE(off.cpu().pc(), off.symbol("done"));
+
+    Machine on(source);
+    on.vector(oscillator_failure_vector, "trap");
+    on.cpu().program(fosc_address, monitor_on);
+    on.cpu().run(on.cpu().cycles() + 100);
+    EXPECT_TRUE(on.cpu().fail_oscillator());
+    ASSERT_TRUE(on.run_to("done"));
+    EXPECT_EQ(on.cpu().w(9), 0xCAFE);
+    EXPECT_EQ(on.cpu().w(4) & intcon1::OSCFAIL, intcon1::OSCFAIL);
+    EXPECT_EQ(on.cpu().w(6) & osccon::CF, osccon::CF);
+    EXPECT_EQ(on.cpu().w(7) & sr::IPL, 6 << sr::IPL_SHIFT); // level 14 = IPL3 + 6
+    EXPECT_EQ(on.cpu().w(8) & corcon::IPL3, corcon::IPL3);
 }
 
 // DS70157F §4.7.3: once SPLIM is written, a W15-based address above it is a

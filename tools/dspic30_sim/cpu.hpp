@@ -55,6 +55,8 @@ class Cpu
   public:
     // The number of instruction addresses kept for reports (last_pcs()).
     static constexpr int history_length = 32;
+    // W15, the stack pointer.
+    static constexpr int stack_pointer_register = 15;
     // Trap resets in a row (no instruction cycle in between more than
     // storm_window apart) that stop run() with trap_reset_storm.
     static constexpr int storm_resets = 8;
@@ -114,6 +116,12 @@ class Cpu
     void raise_interrupt(int irq);
     // Whether the flag of IRQ `irq` is set.
     bool interrupt_flag(int irq) const;
+    // An oscillator failure as the fail-safe clock monitor meets it (fault
+    // injection: the simulator has no clock that fails): with FOSC.FCKSM = 00
+    // sets OSCCON.CF, clears OSWEN, raises the oscillator-failure trap and
+    // returns true; with the monitor off (the e-puck's setting) returns false
+    // and changes nothing (the real chip would stop).
+    bool fail_oscillator();
     // Tells the CPU that a peripheral's next_event() moved earlier.
     void reschedule()
     {
@@ -125,9 +133,10 @@ class Cpu
     {
         return w_[n];
     }
+    // Sets Wn (W15 with its bit 0 cleared, as the chip does).
     void set_w(int n, uint16_t value)
     {
-        w_[n] = value;
+        w_[n] = n == stack_pointer_register ? static_cast<uint16_t>(value & ~1u) : value;
     }
     uint32_t pc() const
     {

@@ -103,6 +103,19 @@ void Cpu::raise_trap(Trap trap, std::string cause)
     next_event_ = 0;
 }
 
+bool Cpu::fail_oscillator()
+{
+    const uint16_t fosc = static_cast<uint16_t>(program_.read(fosc_address));
+    if (fosc & fosc_fcksm)
+        return false;
+    // DS70138G §20.2.7: CF set, OSWEN cleared, the trap raised. ⚠ The switch
+    // to the FRC oscillator (COSC) is not modelled: cycles keep their length.
+    uint16_t &osccon_value = sfr_[sfr::OSCCON / 2];
+    osccon_value = static_cast<uint16_t>((osccon_value | osccon::CF) & ~osccon::OSWEN);
+    raise_trap(Trap::oscillator_failure, "oscillator failure (fail-safe clock monitor)");
+    return true;
+}
+
 void Cpu::take_exception(int vector, int level)
 {
     const uint32_t return_pc = pc_;

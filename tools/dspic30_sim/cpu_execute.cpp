@@ -16,7 +16,8 @@ namespace
 
 constexpr uint16_t count_bits = 0x3FFF;
 constexpr uint16_t high_pc_bits = 0x007F;
-constexpr int do_levels_max = 7; // DL<2:0>
+constexpr int do_levels_max = 7;                // DL<2:0>
+constexpr uint16_t stack_pointer_mask = 0xFFFE; // W15<0> is always 0
 
 // Operand widths.
 struct Width {
@@ -1021,6 +1022,9 @@ StopReason Cpu::run_loop(uint64_t cycle_limit)
             }
             break;
         }
+        // W15<0> reads 0 whatever was written to it (FRM2 p.2-8): one AND
+        // here rather than a test at each of the many places W15 is written.
+        w_[stack_pointer_register] &= stack_pointer_mask;
         pc_ = npc;
         if (pc == watch_pc_)
             loop_end(pc);

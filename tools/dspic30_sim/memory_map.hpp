@@ -29,6 +29,10 @@ inline constexpr uint16_t device_revision = 0x1040; // rev B0 silicon
 inline constexpr uint32_t erased_word = 0xFFFFFF;
 inline constexpr uint32_t flash_row_words = 32; // erase and write unit
 inline constexpr uint32_t eeprom_row_words = 16;
+inline constexpr uint32_t fosc_address = 0xF80000; // oscillator configuration word
+// FOSC.FCKSM<1:0>: both 0 = clock switching and the fail-safe clock monitor
+// on (⚠ from the dsPIC30F data sheets' FCKSM table, DS70138G §20.2.7).
+inline constexpr uint16_t fosc_fcksm = 3u << 14;
 inline constexpr uint32_t fwdt_address = 0xF80002; // watchdog configuration word
 inline constexpr uint16_t fwdt_enable = 1u << 15;  // FWDT.FWDTEN
 // The watchdog's nominal 2 ms period before its prescalers, in cycles.
@@ -139,6 +143,12 @@ inline constexpr uint16_t WRITABLE = IF | RND | PSV | ACCSAT | SATDW | SATB | SA
 } // namespace corcon
 
 // --- INTCON1 / INTCON2 / RCON bits ---------------------------------------------
+namespace osccon
+{
+inline constexpr uint16_t OSWEN = 1u << 0; // a clock switch requested
+inline constexpr uint16_t CF = 1u << 3;    // the clock monitor saw a failure
+} // namespace osccon
+
 namespace intcon1
 {
 inline constexpr uint16_t OSCFAIL = 1u << 1;
