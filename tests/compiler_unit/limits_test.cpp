@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include "tools/compiler/target_json.hpp"
 #include "unit_support.hpp"
 
 namespace aseba::unit
@@ -131,6 +132,75 @@ TEST(CompilerLimits, InsideTheLimitsTheyCompile)
     std::string calls =
       "var x\nx = " + repeat("f(", 30) + "1" + repeat(")", 30) + "\nsub f(v)\n    return v\n";
     EXPECT_TRUE(compile_for_dummy(calls).ok) << compile_for_dummy(calls).error.message;
+}
+
+// What the bytecode can encode (spec bytecode.md): NATIVE_CALL names its
+// native in a 12-bit operand, so 4,096 natives at most; local event i has id
+// 0xFFFE - i, which must stay above the global events' ids (below 0x8000),
+// so 32,767 local events at most. A description beyond is refused, whether
+// it comes from a file or from a node on the network, rather than compiled
+// into calls of the wrong native (the issue: `call n4097(x)` became
+// NATIVE_CALL 1) or handlers of a global event (`onevent e39000` got id
+// 0x67a6).
+struct DescriptionSize {
+    const char *name;
+    size_t natives;
+    size_t local_events;
+    const char *program; // for that target
+    bool accepted;
+    uint16_t expected_word; // accepted: the native call, or the handler's event id
+};
+
+const DescriptionSize description_sizes[] = {
+    { "last_native", 4096, 0, "call n4095()\n", true, 0xCFFF },
+    { "one_native_too_many", 4097, 0, "call n4096()\n", false, 0 },
+    { "last_local_event", 0, 32767, "var x\nonevent e32766\nx = 1\n", true, 0x8000 },
+    { "one_local_event_too_many", 0, 32768, "var x\nonevent e32767\nx = 1\n", false, 0 },
+};
+
+TargetDescription sized_target(const DescriptionSize &size)
+{
+    TargetDescription target = dummy_target();
+    target.native_functions.clear();
+    for (size_t i = 0; i < size.natives; i++)
+        target.native_functions.push_back({ "n" + std::to_string(i), "", {} });
+    target.local_events.clear();
+    for (size_t i = 0; i < size.local_events; i++)
+        target.local_events.push_back({ "e" + std::to_string(i), "" });
+    return target;
+}
+
+TEST(DescriptionLimits, TheCompilerRefusesWhatTheBytecodeCannotEncode)
+{
+    for (const DescriptionSize &size : description_sizes) {
+        SCOPED_TRACE(size.name);
+        CompileResult result = compile(size.program, sized_target(size), {});
+        ASSERT_EQ(result.ok, size.accepted) << result.error.message;
+        if (size.accepted) {
+            // The native call is the first word of code; the handler's event
+            // id the first of the event table's pairs (the init code is empty).
+            uint16_t word = size.natives > 0 ? code_of(result).front() : result.bytecode.at(1);
+            EXPECT_EQ(word, size.expected_word);
+        } else {
+            EXPECT_EQ(result.error.message.rfind("Broken target description: ", 0), 0u)
+              << result.error.message;
+        }
+    }
+}
+
+TEST(DescriptionLimits, ADescriptionFileBeyondThemNamesTheLimit)
+{
+    for (const DescriptionSize &size : description_sizes) {
+        SCOPED_TRACE(size.name);
+        TargetReadResult read = read_target_json(write_target_json(sized_target(size)));
+        EXPECT_EQ(read.ok, size.accepted) << read.error;
+        if (!size.accepted) {
+            const char *array = size.natives > 0 ? "natives: " : "local_events: ";
+            EXPECT_EQ(read.error.rfind(array, 0), 0u) << read.error;
+            EXPECT_NE(read.error.find(size.natives > 0 ? "4096" : "32767"), std::string::npos)
+              << read.error;
+        }
+    }
 }
 
 } // namespace

@@ -20,6 +20,8 @@ CompileResult compile(std::string_view source,
             throw CompileFailure("This program is " + std::to_string(source.size()) +
                                  " bytes long; the compiler takes at most " +
                                  std::to_string(MAX_SOURCE_BYTES) + " bytes (1 MiB)");
+        if (std::string limits = target_limits_error(target); !limits.empty())
+            throw CompileFailure("Broken target description: " + limits);
         Compilation compilation(target, definitions);
         std::vector<Token> tokens = tokenize(source);
         NodePointer program = parse_program(tokens, compilation);

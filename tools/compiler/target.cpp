@@ -1,5 +1,5 @@
-// The one text form of a target's definitions that is not a file: a global
-// event declared on a command line.
+// What every target must respect, and the one text form of a target's
+// definitions that is not a file: a global event declared on a command line.
 
 #include "tools/compiler/target.hpp"
 
@@ -7,6 +7,28 @@
 
 namespace aseba
 {
+
+std::string natives_limit_error(size_t count)
+{
+    if (count <= MAX_NATIVE_FUNCTIONS)
+        return "";
+    return std::to_string(count) + " native functions, more than the " +
+           std::to_string(MAX_NATIVE_FUNCTIONS) + " the bytecode can call";
+}
+
+std::string local_events_limit_error(size_t count)
+{
+    if (count <= MAX_LOCAL_EVENTS)
+        return "";
+    return std::to_string(count) + " local events, more than the " +
+           std::to_string(MAX_LOCAL_EVENTS) + " whose ids stay apart from the global events'";
+}
+
+std::string target_limits_error(const TargetDescription &target)
+{
+    std::string natives = natives_limit_error(target.native_functions.size());
+    return natives.empty() ? local_events_limit_error(target.local_events.size()) : natives;
+}
 
 GlobalEvent parse_event_declaration(const std::string &text)
 {

@@ -4,11 +4,13 @@
 
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-namespace aseba {
+namespace aseba
+{
 
 struct NamedVariable {
     std::string name;
@@ -43,6 +45,20 @@ struct TargetDescription {
     std::vector<LocalEvent> local_events;
     std::vector<NativeFunction> native_functions;
 };
+
+// What the bytecode can encode (spec bytecode.md): NATIVE_CALL names its
+// native in a 12-bit operand, and local event i has id 0xFFFE - i, which
+// must stay above the ids of the global events (0 to 0x7FFF).
+constexpr size_t MAX_NATIVE_FUNCTIONS = 4096;
+constexpr size_t MAX_LOCAL_EVENTS = 32767;
+
+// What is wrong with a target of `count` natives, or local events, or ""
+// when the bytecode can encode them.
+std::string natives_limit_error(size_t count);
+std::string local_events_limit_error(size_t count);
+// Why no program can be compiled for `target`, or "" when it is within both
+// limits.
+std::string target_limits_error(const TargetDescription &target);
 
 struct GlobalEvent {
     std::string name;

@@ -1,6 +1,11 @@
 // Target descriptions in JSON (docs/target-description.md) over
 // nlohmann-json: its parser is iterative, so no nesting can exhaust the
 // stack; here, only the mapping onto TargetDescription and its checks.
+// Everything is linear in the size of the file: the nesting is measured
+// before parsing rather than by nlohmann's parser callback, which scans the
+// array so far at the end of each of its objects (quadratic in the number of
+// local events), and the counts the bytecode limits are checked before any
+// item is read.
 
 #include "target_json.hpp"
 
@@ -132,6 +137,12 @@ void check_unique(const std::vector<Item> &items, const std::string &array)
                                    "the name " + items[i].name + " is used twice");
 }
 
+// "standard" in the natives: the standard natives, in their order.
+bool is_standard_shorthand(const Json &native)
+{
+    return native.is_string() && native.get_ref<const std::string &>() == "standard";
+}
+
 NativeFunction native_from(const Json &value, const std::string &path)
 {
     object_at(value, path);
@@ -182,6 +193,8 @@ TargetDescription target_from(const Json &root)
     check_unique(target.named_variables, "variables");
 
     const Json &events = array_member(root, "", "local_events");
+    if (std::string error = local_events_limit_error(events.size()); !error.empty())
+        throw DescriptionError("local_events", error);
     for (size_t i = 0; i < events.size(); i++) {
         std::string where = item_path("local_events", i);
         object_at(events[i], where);
@@ -191,8 +204,14 @@ TargetDescription target_from(const Json &root)
     check_unique(target.local_events, "local_events");
 
     const Json &natives = array_member(root, "", "natives");
+    const size_t standard_count = standard_native_functions().size();
+    size_t native_count = 0;
+    for (const Json &native : natives)
+        native_count += is_standard_shorthand(native) ? standard_count : 1;
+    if (std::string error = natives_limit_error(native_count); !error.empty())
+        throw DescriptionError("natives", error);
     for (size_t i = 0; i < natives.size(); i++) {
-        if (natives[i].is_string() && natives[i].get<std::string>() == "standard") {
+        if (is_standard_shorthand(natives[i])) {
             for (const NativeFunction &function : standard_native_functions())
                 target.native_functions.push_back(function);
             continue;
@@ -201,6 +220,32 @@ TargetDescription target_from(const Json &root)
     }
     check_unique(target.native_functions, "natives");
     return target;
+}
+
+// Whether `text` nests arrays and objects more than MAX_JSON_DEPTH deep
+// (brackets inside strings do not count); malformed text is left to the
+// parser.
+bool nested_too_deeply(std::string_view text)
+{
+    int depth = 0;
+    bool in_string = false;
+    for (size_t i = 0; i < text.size(); i++) {
+        char c = text[i];
+        if (in_string) {
+            if (c == '\\')
+                i++;
+            else if (c == '"')
+                in_string = false;
+        } else if (c == '"') {
+            in_string = true;
+        } else if (c == '[' || c == '{') {
+            if (++depth > MAX_JSON_DEPTH)
+                return true;
+        } else if (c == ']' || c == '}') {
+            depth--;
+        }
+    }
+    return false;
 }
 
 // nlohmann's message without its "[json.exception.KIND.ID] " prefix: "parse
@@ -217,15 +262,12 @@ std::string json_error_text(const nlohmann::json::exception &error)
 TargetReadResult read_target_json(std::string_view text_of_file)
 {
     TargetReadResult result;
-    // Refuses absurd nesting while parsing, before any value is built.
-    Json::parser_callback_t limit_depth = [](int depth, Json::parse_event_t, Json &) {
-        if (depth > MAX_JSON_DEPTH)
+    try {
+        // Refuses absurd nesting before any value is built.
+        if (nested_too_deeply(text_of_file))
             throw DescriptionError(
               "", "nested more than " + std::to_string(MAX_JSON_DEPTH) + " levels deep");
-        return true;
-    };
-    try {
-        Json root = Json::parse(text_of_file.begin(), text_of_file.end(), limit_depth);
+        Json root = Json::parse(text_of_file.begin(), text_of_file.end());
         result.target = target_from(root);
         result.ok = true;
     } catch (const nlohmann::json::exception &error) {
