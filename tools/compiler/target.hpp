@@ -8,7 +8,8 @@
 #include <string>
 #include <vector>
 
-namespace aseba {
+namespace aseba
+{
 
 struct NamedVariable {
     std::string name;
