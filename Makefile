@@ -11,7 +11,7 @@
 #   make stm32f4       the STM32F4 image, run by QEMU in the tests (ports/stm32f4/module.mk)
 #   make run           the main job
 #   make install       the programs in PREFIX/bin (default /usr/local)
-#   make format        clang-format every source file
+#   make format        clang-format every C and C++ file (make test checks it)
 
 .DEFAULT_GOAL := all
 SHELL := /bin/bash
@@ -176,8 +176,8 @@ install: $(foreach p,$(INSTALLED_PROGRAMS),$(BUILD)/host/bin/$(p))
 	install -m 755 $^ $(DESTDIR)$(PREFIX)/bin/
 	@echo "installed $(INSTALLED_PROGRAMS) in $(DESTDIR)$(PREFIX)/bin"
 
-format:
-	clang-format -i $$(git ls-files '*.c' '*.h' '*.cpp' '*.hpp')
+format: | $(TEST_DEPS_STAMP)
+	@scripts/check-format.sh --apply
 
 clean:
 	rm -rf $(BUILD)

@@ -80,8 +80,7 @@ static void start_stored_program(firmware_state *firmware)
 {
     uint16_t count;
 
-    if (!store_load_bytecode(
-          firmware->board, firmware->bytecode, FIRMWARE_BYTECODE_WORDS, &count))
+    if (!store_load_bytecode(firmware->board, firmware->bytecode, FIRMWARE_BYTECODE_WORDS, &count))
         return;
     vm_reset(&firmware->node.vm);
     vm_command_run(&firmware->node.vm);

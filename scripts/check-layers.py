@@ -89,6 +89,32 @@ def sources(root):
             yield from (p for p in base.rglob("*") if p.suffix in SOURCE_SUFFIXES)
 
 
+def problem(source, target):
+    """Why `source` may not include `target` (repository paths), or None."""
+    here, there = layer_of(source), layer_of(target)
+    if here is None or there is None:
+        return None
+    if there[0] > here[0]:
+        return f"{LAYERS[here[0]][0]} includes {target}, of the higher layer {LAYERS[there[0]][0]}"
+    if there[0] == here[0] and here[1] != there[1]:
+        return f"{LAYERS[here[0]][0]} {here[1]} includes {target}, of another {LAYERS[there[0]][0]} ({there[1]})"
+    return None
+
+
+# The check's own cases: (including file, included file, whether refused).
+SELF_CHECKS = [
+    ("robots/epuck/devices/epuck_devices.h", "firmware/firmware.h", True),
+    ("ports/dspic30/dspic30_chip.h", "robots/epuck/epuck_board.h", True),
+    ("boards/epuck_host/epuck_host_config.h", "ports/dspic30/dspic30_flash_geometry.h", False),
+    ("boards/epuck_host/host_board.h", "boards/epuck_dspic30/epuck_dspic30_board.h", True),
+    ("ports/stm32f4/stm32f4_clock.c", "ports/dspic30/dspic30_chip.h", True),
+    ("ports/dspic30/dspic30_application_main.c", "firmware/firmware.h", False),
+    ("ports/dspic30/dspic30_uart.c", "ports/dspic30/dspic30_application_main.c", True),
+    ("store/bytecode_store.c", "vm/node_crc.h", False),
+    ("vm/vm.h", "hal/hal.h", True),
+]
+
+
 def main(argv):
     root = pathlib.Path(__file__).resolve().parent.parent
     files = sorted(set(sources(root)))
@@ -100,10 +126,14 @@ def main(argv):
         return 0
     checked = 0
     problems = []
+    for source, target, refused in SELF_CHECKS:
+        checked += 1
+        if (problem(source, target) is not None) != refused:
+            problems.append(f"check-layers itself: {source} including {target} should be "
+                            f"{'refused' if refused else 'allowed'}")
     for path in files:
         relative = path.relative_to(root).as_posix()
-        here = layer_of(relative)
-        if here is None:
+        if layer_of(relative) is None:
             continue
         for number, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
             match = INCLUDE.match(line)
@@ -114,22 +144,13 @@ def main(argv):
             if target is None:
                 problems.append(f"{relative}:{number}: includes {match.group(1)}, which is not in the repository")
                 continue
-            there = layer_of(target)
-            if there is None:
-                continue
-            if there[0] > here[0]:
-                problems.append(
-                    f"{relative}:{number}: {LAYERS[here[0]][0]} includes {target}, "
-                    f"of the higher layer {LAYERS[there[0]][0]}"
-                )
-            elif there[0] == here[0] and here[1] != there[1]:
-                problems.append(
-                    f"{relative}:{number}: {LAYERS[here[0]][0]} {here[1]} includes {target}, "
-                    f"of another {LAYERS[there[0]][0]} ({there[1]})"
-                )
-    for problem in problems:
-        print(problem)
-    print(f"check-layers: {checked} includes of {len(files)} files read")
+            why = problem(relative, target)
+            if why:
+                problems.append(f"{relative}:{number}: {why}")
+    for line in problems:
+        print(line)
+    print(f"check-layers: {checked - len(SELF_CHECKS)} includes of {len(files)} files, "
+          f"and {len(SELF_CHECKS)} cases of its own")
     print(f"{checked - len(problems)} passed, {len(problems)} failed")
     return 1 if problems else 0
 

@@ -33,7 +33,7 @@ declare -A groups=(
              libenki-dev libwebsocketpp-dev nodejs libmosquitto-dev"
     [test]="libgtest-dev python3 aseba libdashel-dev locales
             qemu-system-arm gcc-arm-none-eabi libnewlib-arm-none-eabi chromium
-            mosquitto python3-paho-mqtt python3-matplotlib"
+            mosquitto python3-paho-mqtt python3-matplotlib clang-format"
     [cross]="gcc-avr avr-libc binutils-avr gcc-arm-none-eabi libnewlib-arm-none-eabi"
     [fuzz]="clang libclang-rt-14-dev libpugixml-dev nlohmann-json3-dev libasio-dev aseba"
     [bench]="chromium valgrind python3 aseba libdashel-dev locales gcc-avr avr-libc binutils-avr
@@ -51,6 +51,7 @@ declare -A groups=(
 #   aseba, libdashel-dev, locales   the reference implementation, an oracle
 #                                   for tests and benchmarks only
 #   valgrind            instruction counts in benchmarks
+#   clang-format        the format check of `make test` (scripts/check-format.sh)
 #   libwebsocketpp-dev  the IDE's server: HTTP and WebSocket on asio
 #   nodejs              the IDE's page: npm installs its lockfile, esbuild bundles it
 #   chromium            the IDE's browser tests and benchmarks (headless, driven by

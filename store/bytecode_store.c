@@ -252,10 +252,7 @@ bool store_save_bytecode(hal_board *board, const uint16_t *bytecode, uint16_t co
     return store_save(board, &place, bytecode, count);
 }
 
-bool store_load_bytecode(hal_board *board,
-                               uint16_t *bytecode,
-                               uint16_t capacity,
-                               uint16_t *count)
+bool store_load_bytecode(hal_board *board, uint16_t *bytecode, uint16_t capacity, uint16_t *count)
 {
     store_place place;
 
@@ -271,10 +268,7 @@ bool store_save_settings(hal_board *board, const uint16_t *settings, uint16_t co
     return store_save(board, &place, settings, count);
 }
 
-bool store_load_settings(hal_board *board,
-                               uint16_t *settings,
-                               uint16_t capacity,
-                               uint16_t *count)
+bool store_load_settings(hal_board *board, uint16_t *settings, uint16_t capacity, uint16_t *count)
 {
     store_place place;
 

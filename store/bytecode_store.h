@@ -120,10 +120,7 @@ bool store_save_bytecode(hal_board *board, const uint16_t *bytecode, uint16_t co
 
 // Loads the newest stored bytecode; returns false when there is none. The
 // caller then resets the VM (vm_reset: verified, `when` flags cleared) and runs init.
-bool store_load_bytecode(hal_board *board,
-                               uint16_t *bytecode,
-                               uint16_t capacity,
-                               uint16_t *count);
+bool store_load_bytecode(hal_board *board, uint16_t *bytecode, uint16_t capacity, uint16_t *count);
 
 // Saves the settings words (node id, calibration; up to
 // STORE_SETTINGS_CAPACITY_WORDS, of which the node reads
@@ -131,10 +128,7 @@ bool store_load_bytecode(hal_board *board,
 bool store_save_settings(hal_board *board, const uint16_t *settings, uint16_t count);
 
 // Loads the newest stored settings; returns false when there are none.
-bool store_load_settings(hal_board *board,
-                               uint16_t *settings,
-                               uint16_t capacity,
-                               uint16_t *count);
+bool store_load_settings(hal_board *board, uint16_t *settings, uint16_t capacity, uint16_t *count);
 
 // The node id of the robot, the same for the bootloader and the
 // application: the one in the stored settings when they hold a valid one,

@@ -18,7 +18,8 @@
 
 #if !defined(NODE_INTER_BYTE_TIMEOUT_MS) || !defined(NODE_STEP_BUDGET) ||                          \
   !defined(NODE_TRANSMIT_CHUNK)
-#error "the target's configuration must give NODE_INTER_BYTE_TIMEOUT_MS, NODE_STEP_BUDGET and NODE_TRANSMIT_CHUNK"
+#error                                                                                             \
+  "the target's configuration must give NODE_INTER_BYTE_TIMEOUT_MS, NODE_STEP_BUDGET and NODE_TRANSMIT_CHUNK"
 #endif
 
 #endif

@@ -28,7 +28,6 @@
 // for calibration (they fit one flash row, the settings slot).
 #define STORE_SETTINGS_WORDS 44u
 
-
 // --- the portable layers' switches (vm/vm_config.h, vm/node_config.h) -------------
 // Switch dispatch: XC16's support of `&&label` is unverified. A build of
 // the VM both ways (scripts/bench.sh) gives its own.

@@ -81,8 +81,8 @@ void dspic30_uart_init(hal_board *board);
 void dspic30_uart_wait_sent(hal_board *board);
 
 // The interrupt handlers of the chip's own parts; each clears its own flag.
-void dspic30_on_clock_tick(hal_board *board);    // Timer1
-void dspic30_on_uart1_receive(hal_board *board); // U1RX
+void dspic30_on_clock_tick(hal_board *board);     // Timer1
+void dspic30_on_uart1_receive(hal_board *board);  // U1RX
 void dspic30_on_uart1_transmit(hal_board *board); // U1TX
 
 // The data EEPROM (DSPIC30_EEPROM_WORDS words of 16 bits; nothing in the

@@ -77,7 +77,8 @@ struct FirmwareImage : ::testing::Test {
     // the bootloader answered as (the stored settings' or the selector's).
     void boot()
     {
-        uint16_t id = store_node_id(board.get(), epuck_selector_node_id(epuck_selector_read(board.get())));
+        uint16_t id =
+          store_node_id(board.get(), epuck_selector_node_id(epuck_selector_read(board.get())));
         firmware_init(firmware.get(), board.get(), devices.get(), id);
     }
     // Runs the main loop over `seconds` of board time, a pass per 0.5 ms.

@@ -35,7 +35,10 @@ std::vector<uint8_t> drain(hal_link_rings &rings)
 class LinkRings : public ::testing::Test
 {
   protected:
-    void SetUp() override { hal_link_rings_init(rings.get()); }
+    void SetUp() override
+    {
+        hal_link_rings_init(rings.get());
+    }
     std::unique_ptr<hal_link_rings> rings = std::make_unique<hal_link_rings>();
 };
 

@@ -37,7 +37,8 @@ std::string describe(const ParsedRequest &parsed)
       [&](const auto &request) -> std::string {
           using T = std::decay_t<decltype(request)>;
           if constexpr (std::is_same_v<T, CompileRequest>)
-              return "compile " + robot_name(request.robot) + " source=" + std::to_string(request.source.size()) +
+              return "compile " + robot_name(request.robot) +
+                     " source=" + std::to_string(request.source.size()) +
                      (request.remember ? "" : " not-remembered") + id;
           else if constexpr (std::is_same_v<T, ScriptRequest>)
               return "script " + robot_name(request.robot) + id;

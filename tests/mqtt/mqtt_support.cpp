@@ -90,7 +90,8 @@ void Broker::start()
       << "listener " << port_ << " 127.0.0.1\n"
       << "allow_anonymous true\n"
       << "persistence true\n"
-      << "persistence_location " << folder_ << "/\n"
+      << "persistence_location " << folder_
+      << "/\n"
       // mosquitto drops QoS 1 messages beyond 1,000 queued for a subscriber
       // that is late (docs/mqtt.md); the bench's bursts of 20,000 would
       // measure that limit rather than the bridge.

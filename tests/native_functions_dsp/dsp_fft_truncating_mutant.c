@@ -13,8 +13,8 @@
 
 #define nat_dsp_round_shift32(value, shift)                                                        \
     ((shift) == 1 ? (value) >> 1 : nat_dsp_round_shift32(value, shift))
-#define nat_dsp_fft_function nat_dsp_fft_truncating_mutant_function
-#define nat_dsp_mag_function nat_dsp_mag_truncating_mutant_function
+#define nat_dsp_fft_function    nat_dsp_fft_truncating_mutant_function
+#define nat_dsp_mag_function    nat_dsp_mag_truncating_mutant_function
 #define nat_dsp_fft_description nat_dsp_fft_truncating_mutant_description
 #define nat_dsp_mag_description nat_dsp_mag_truncating_mutant_description
 

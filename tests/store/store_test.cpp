@@ -54,8 +54,7 @@ std::optional<Words> load_bytecode(hal_board *board)
 {
     Words words(FIRMWARE_BYTECODE_WORDS);
     uint16_t count = 0;
-    if (!store_load_bytecode(
-          board, words.data(), static_cast<uint16_t>(words.size()), &count))
+    if (!store_load_bytecode(board, words.data(), static_cast<uint16_t>(words.size()), &count))
         return std::nullopt;
     words.resize(count);
     return words;
@@ -180,8 +179,8 @@ TEST(NodeId, ComesFromTheSettingsOrElseFromTheSelector)
     EXPECT_EQ(store_node_id(board.get(), epuck_selector_node_id(13)), 42);
     // Not a node id (0, the broadcast 0xFFFF) or an empty record: the selector.
     for (Words other : { Words{ 0, 5 }, Words{ 0xFFFF }, Words{} }) {
-        ASSERT_TRUE(store_save_settings(
-          board.get(), other.data(), static_cast<uint16_t>(other.size())));
+        ASSERT_TRUE(
+          store_save_settings(board.get(), other.data(), static_cast<uint16_t>(other.size())));
         EXPECT_EQ(store_node_id(board.get(), epuck_selector_node_id(2)), 3);
     }
     Words highest{ 0xFFFE };

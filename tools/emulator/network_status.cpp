@@ -45,8 +45,14 @@ std::string NetworkStatus::line(double seconds, size_t robots, size_t clients)
     seconds_at_last_line_ = seconds;
 
     char head[160];
-    std::snprintf(head, sizeof head, "%7.1f s | %zu robot%s | %zu tool%s | %6.0f frames/s",
-                  seconds, robots, robots == 1 ? "" : "s", clients, clients == 1 ? "" : "s",
+    std::snprintf(head,
+                  sizeof head,
+                  "%7.1f s | %zu robot%s | %zu tool%s | %6.0f frames/s",
+                  seconds,
+                  robots,
+                  robots == 1 ? "" : "s",
+                  clients,
+                  clients == 1 ? "" : "s",
                   rate);
     std::string text = head;
     for (const auto &[type, total] : event_counts_) {

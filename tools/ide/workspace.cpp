@@ -48,7 +48,8 @@ bool Workspace::match(NodeKey key, const std::string &robot_name)
     waiting.erase(std::remove_if(waiting.begin(),
                                  waiting.end(),
                                  [&](const AeslNode &left) {
-                                     return left.name == program->name && left.node_id == program->node_id;
+                                     return left.name == program->name &&
+                                            left.node_id == program->node_id;
                                  }),
                   waiting.end());
     return true;
