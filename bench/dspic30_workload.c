@@ -7,11 +7,11 @@
 #include <stdint.h>
 
 #define BUFFER_SIZE 64
-#define TAPS 8
+#define TAPS        8
 
 static uint8_t buffer[BUFFER_SIZE];
 static int16_t samples[BUFFER_SIZE];
-static const int16_t coefficients[TAPS] = {1024, -2048, 4096, 8192, 8192, 4096, -2048, 1024};
+static const int16_t coefficients[TAPS] = { 1024, -2048, 4096, 8192, 8192, 4096, -2048, 1024 };
 volatile uint32_t sink;
 
 static uint16_t crc16(const uint8_t *data, uint16_t length)

@@ -6,11 +6,12 @@
 
 #include "harness.h"
 
-static volatile uint32_t inputs[] = {0u,          1u,          2u,         3u,         7u,
-                                     0x7Fu,       0x80u,       0xFFu,      0x100u,     0x1234u,
-                                     0x7FFFu,     0x8000u,     0x8001u,    0xFFFEu,    0xFFFFu,
-                                     0x10000u,    0x12345678u, 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFFu,
-                                     0xDEADBEEFu, 0x00C0FFEEu, 0x55555555u, 0xAAAAAAABu};
+static volatile uint32_t inputs[] = { 0u,          1u,          2u,          3u,
+                                      7u,          0x7Fu,       0x80u,       0xFFu,
+                                      0x100u,      0x1234u,     0x7FFFu,     0x8000u,
+                                      0x8001u,     0xFFFEu,     0xFFFFu,     0x10000u,
+                                      0x12345678u, 0x7FFFFFFFu, 0x80000000u, 0xFFFFFFFFu,
+                                      0xDEADBEEFu, 0x00C0FFEEu, 0x55555555u, 0xAAAAAAABu };
 #define COUNT (sizeof inputs / sizeof inputs[0])
 
 static uint32_t mix(uint32_t h, uint32_t v)
@@ -27,7 +28,8 @@ static void eight_bit(void)
             int8_t sa = (int8_t)a, sb = (int8_t)b;
             h = mix(h, (uint8_t)(a + b));
             h = mix(h, (uint8_t)(a - b));
-            h = mix(h, (uint8_t)((unsigned)a * b)); /* uint8_t * uint8_t is a 16-bit int on the dsPIC */
+            h = mix(
+              h, (uint8_t)((unsigned)a * b)); /* uint8_t * uint8_t is a 16-bit int on the dsPIC */
             h = mix(h, (uint32_t)(uint8_t)(a & b) | (uint32_t)(uint8_t)(a ^ b) << 8);
             h = mix(h, (uint32_t)(a < b) | (uint32_t)(sa < sb) << 1 | (uint32_t)(a == b) << 2);
             if (b != 0) {
@@ -57,8 +59,9 @@ static void sixteen_bit(void)
             h = mix(h, (uint32_t)((int32_t)sa * sb));
             h = mix(h, (uint32_t)a * b);
             h = mix(h, (uint16_t)(a | b) ^ (uint16_t)~a);
-            h = mix(h, (uint32_t)(a < b) | (uint32_t)(sa < sb) << 1 | (uint32_t)(a <= b) << 2 |
-                         (uint32_t)(sa >= sb) << 3 | (uint32_t)(a != b) << 4);
+            h = mix(h,
+                    (uint32_t)(a < b) | (uint32_t)(sa < sb) << 1 | (uint32_t)(a <= b) << 2 |
+                      (uint32_t)(sa >= sb) << 3 | (uint32_t)(a != b) << 4);
             if (b != 0) {
                 h = mix(h, (uint16_t)(a / b));
                 h = mix(h, (uint16_t)(a % b));
@@ -85,8 +88,9 @@ static void thirty_two_bit(void)
             h = mix(h, a - b);
             h = mix(h, a * b);
             h = mix(h, (a & ~b) | (a ^ b));
-            h = mix(h, (uint32_t)(a < b) | (uint32_t)(sa < sb) << 1 | (uint32_t)(a > b) << 2 |
-                         (uint32_t)(sa <= sb) << 3);
+            h = mix(h,
+                    (uint32_t)(a < b) | (uint32_t)(sa < sb) << 1 | (uint32_t)(a > b) << 2 |
+                      (uint32_t)(sa <= sb) << 3);
             if (b != 0) {
                 h = mix(h, a / b);
                 h = mix(h, a % b);

@@ -3,11 +3,11 @@
 
 #include "harness.h"
 
-static const uint16_t words[] = {0x0001, 0x0203, 0x0405, 0x0607, 0xFFFF, 0x8000, 0x7FFF, 0x1234,
-                                 0xABCD, 0x5A5A, 0x0F0F, 0xF0F0, 0x1111, 0x2222, 0x3333, 0x4444};
-static const int8_t bytes[] = {-128, -1, 0, 1, 127, 42, -42, 99};
-static const uint32_t longs[] = {0xDEADBEEFu, 0x00000001u, 0x80000000u, 0x12345678u};
-static const char *const names[] = {"alpha", "beta", "gamma", "delta", ""};
+static const uint16_t words[] = { 0x0001, 0x0203, 0x0405, 0x0607, 0xFFFF, 0x8000, 0x7FFF, 0x1234,
+                                  0xABCD, 0x5A5A, 0x0F0F, 0xF0F0, 0x1111, 0x2222, 0x3333, 0x4444 };
+static const int8_t bytes[] = { -128, -1, 0, 1, 127, 42, -42, 99 };
+static const uint32_t longs[] = { 0xDEADBEEFu, 0x00000001u, 0x80000000u, 0x12345678u };
+static const char *const names[] = { "alpha", "beta", "gamma", "delta", "" };
 static volatile uint16_t index_base = 0;
 
 void differential_main(void)

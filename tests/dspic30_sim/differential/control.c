@@ -4,7 +4,9 @@
 
 #include "harness.h"
 
-static volatile uint16_t seeds[] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 100, 1000, 40000u};
+static volatile uint16_t seeds[] = {
+    0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 100, 1000, 40000u
+};
 #define COUNT (sizeof seeds / sizeof seeds[0])
 
 static uint16_t dense(uint16_t v)
@@ -36,10 +38,19 @@ static uint16_t sparse(uint16_t v)
     }
 }
 
-static uint16_t twice(uint16_t v) { return (uint16_t)(v * 2u); }
-static uint16_t square(uint16_t v) { return (uint16_t)((uint32_t)v * v); }
-static uint16_t negate(uint16_t v) { return (uint16_t)(0u - v); }
-static uint16_t (*const operations[])(uint16_t) = {twice, square, negate, dense, sparse};
+static uint16_t twice(uint16_t v)
+{
+    return (uint16_t)(v * 2u);
+}
+static uint16_t square(uint16_t v)
+{
+    return (uint16_t)((uint32_t)v * v);
+}
+static uint16_t negate(uint16_t v)
+{
+    return (uint16_t)(0u - v);
+}
+static uint16_t (*const operations[])(uint16_t) = { twice, square, negate, dense, sparse };
 
 static uint32_t fibonacci(uint16_t n)
 {

@@ -3,11 +3,11 @@
 
 #include "harness.h"
 
-#define U1MODE (*(volatile uint16_t *)0x020C)
-#define U1STA (*(volatile uint16_t *)0x020E)
+#define U1MODE  (*(volatile uint16_t *)0x020C)
+#define U1STA   (*(volatile uint16_t *)0x020E)
 #define U1TXREG (*(volatile uint16_t *)0x0210)
-#define U1BRG (*(volatile uint16_t *)0x0214)
-#define UTXBF (1u << 9)
+#define U1BRG   (*(volatile uint16_t *)0x0214)
+#define UTXBF   (1u << 9)
 
 static void put(char c)
 {
