@@ -20,6 +20,10 @@ bool dspic30_initialise_data(uint32_t template_address)
 {
     uint32_t address = template_address;
 
+    // A program with no data at all has no template: the linker gives its
+    // address as 0, where the reset vector lies.
+    if (template_address == 0)
+        return true;
     for (;;) {
         uint16_t destination = next_template_word(&address);
         if (destination == 0)

@@ -15,7 +15,7 @@
 #define DSPIC30_DINIT_COPY_TWO_BYTES 1u
 
 // Writes every record of the template at PC address `template_address`
-// into RAM: zeros for a clearing record, the template's bytes for a copy.
+// (0: there is none) into RAM: zeros for a clearing record, the template's bytes for a copy.
 // Returns false, having written nothing more, at a record of another format
 // (a template packed three bytes per word: the image was linked without
 // --no-pack-data).

@@ -7,6 +7,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <memory>
@@ -790,4 +791,16 @@ TEST_F(Dspic30, StartUpRefusesAPackedTemplate)
         chip.flash[template_pc / 2 + i] = words[i];
     EXPECT_FALSE(dspic30_initialise_data(template_pc));
     EXPECT_EQ(chip.ram[0x0800], simulated::Chip::ram_fill);
+}
+
+// A program with no data at all: the linker gives the template's address as
+// 0, where the reset GOTO lies, which must not be read as records.
+TEST_F(Dspic30, StartUpWithoutATemplateWritesNothing)
+{
+    chip.flash[0] = 0x040200; // GOTO 0x000200, as the reset vector holds
+    chip.flash[1] = 0x000000;
+    EXPECT_TRUE(dspic30_initialise_data(0));
+    EXPECT_EQ(chip.ram[0x0200], simulated::Chip::ram_fill);
+    EXPECT_EQ(std::count(chip.ram.begin(), chip.ram.end(), simulated::Chip::ram_fill),
+              std::ptrdiff_t(chip.ram.size()));
 }
