@@ -103,6 +103,37 @@ wait:   btss 0x020E, #0         ; URXDA
     EXPECT_EQ(run.output, "hello");
 }
 
+// --input-after: nothing reaches the receiver before the cycle given. The
+// program answers "E" to a byte that comes during its first 65,536 x 3
+// cycles, and echoes the bytes that come after.
+TEST(Program, InputAfterHoldsStandardInputBack)
+{
+    test::ScratchFolder folder;
+    const std::string path = image(folder, "late.hex", uart_setup + R"(
+        clr w2
+early:  btsc 0x020E, #0         ; URXDA
+        bra too_soon
+        dec w2, w2
+        bra nz, early
+wait:   btss 0x020E, #0
+        bra wait
+        mov 0x0212, w1
+        mov w1, 0x0210
+        bra wait
+too_soon:
+        mov #'E', w1
+        mov w1, 0x0210
+spin:   bra spin
+)");
+    constexpr int early_cycles = 65536 * 3;
+    const ProgramRun held = simulator(
+      "--cycles 2000000 --input-after " + std::to_string(2 * early_cycles) + " " + path, "late");
+    EXPECT_EQ(held.status, 0);
+    EXPECT_EQ(held.output, "late");
+    const ProgramRun at_once = simulator("--cycles 2000000 " + path, "late");
+    EXPECT_EQ(at_once.output, "E");
+}
+
 TEST(Program, UntilExitGivesTheStatus)
 {
     test::ScratchFolder folder;

@@ -23,7 +23,8 @@ namespace cl = aseba::command_line;
 
 constexpr const char *usage =
   "usage: dspic30-sim [--uart1 stdio|none] [--cycles N] [--timeout SECONDS]\n"
-  "                   [--until-exit] [--illegal stop|nop] [--trace] IMAGE.hex";
+  "                   [--input-after N] [--until-exit] [--illegal stop|nop] [--trace]\n"
+  "                   IMAGE.hex";
 
 constexpr const char *details =
   R"(Runs IMAGE.hex on a simulated dsPIC30F6014A (the e-puck's chip) from
@@ -36,7 +37,9 @@ instruction word, the fourth 0.
 
 With --uart1 stdio (the default) what the program sends on UART1 appears
 on standard output and standard input feeds its receiver, at the baud rate
-the program sets. The run stops after --cycles instruction cycles, when the
+the program sets; --input-after holds standard input back until a given
+cycle, as a host that speaks only later (after a bootloader's wait, say).
+The run stops after --cycles instruction cycles, when the
 wall-clock watchdog fires (--timeout), when the chip keeps resetting on
 traps, at a word that is no instruction (--illegal stop), or with
 --until-exit when UART1 prints a line "EXIT n" or "ABORT" (the convention
@@ -56,6 +59,7 @@ struct Options {
     bool until_exit = false;
     std::string illegal = "stop";
     bool trace = false;
+    uint64_t input_after = 0;
 };
 
 Options parse_command_line(int argc, char **argv)
@@ -72,6 +76,11 @@ Options parse_command_line(int argc, char **argv)
         "--uart1", o.uart1, "stdio: UART1 on standard input and output; none: unconnected")
       ->check(CLI::IsMember({ "stdio", "none" }))
       ->type_name("MODE");
+    app
+      .add_option("--input-after",
+                  o.input_after,
+                  "UART1 receives nothing from standard input before cycle N (default 0)")
+      ->type_name("N");
     app.add_option("--cycles", o.cycles, "stop after N instruction cycles (default: no limit)")
       ->type_name("N");
     app
@@ -175,6 +184,12 @@ int main(int argc, char **argv)
         return cl::EXIT_USAGE;
     }
     const bool stdio = options.uart1 == "stdio";
+    const Cpu *chip = nullptr; // set once the simulator exists
+    const auto input = [&chip, after = options.input_after]() {
+        if (chip == nullptr || chip->cycles() < after)
+            return -1;
+        return read_standard_input();
+    };
     Simulator simulator(
       [stdio](uint8_t byte) {
           if (!stdio)
@@ -183,7 +198,8 @@ int main(int argc, char **argv)
           if (byte == '\n')
               std::fflush(stdout);
       },
-      stdio ? std::function<int()>(read_standard_input) : std::function<int()>());
+      stdio ? std::function<int()>(input) : std::function<int()>());
+    chip = &simulator.cpu();
     try {
         simulator.load(words);
     } catch (const std::invalid_argument &e) {
