@@ -77,6 +77,9 @@ fi
 # extra certificate authorities (a TLS proxy's, say) and the variables that
 # point programs at them or at a proxy. These are settings, not packages.
 cp /etc/resolv.conf "$root/etc/resolv.conf"
+# debootstrap writes no hosts file; every installed Debian has one that
+# names localhost (the installer writes it), and our tests connect there.
+printf '127.0.0.1\tlocalhost\n::1\t\tlocalhost ip6-localhost ip6-loopback\n' >"$root/etc/hosts"
 if [ -d /usr/local/share/ca-certificates ]; then
     mkdir -p "$root/usr/local/share/ca-certificates"
     cp -a /usr/local/share/ca-certificates/. "$root/usr/local/share/ca-certificates/"
