@@ -50,7 +50,15 @@ root.append(
         "div",
         { class: "workbench" },
         sidebar,
-        splitter({ target: sidebar, axis: "x", min: 200, max: () => window.innerWidth * 0.45, setting: "sidebar-width", initial: 300, label: "Resize the side panel" }),
+        splitter({
+            target: sidebar,
+            axis: "x",
+            min: 200,
+            max: () => window.innerWidth * 0.45,
+            setting: "sidebar-width",
+            initial: 300,
+            label: "Resize the side panel",
+        }),
         main,
     ),
 );
@@ -69,7 +77,16 @@ const arena = new ArenaView(sidebar, { model, onSelect: select });
 const tabs = new RobotTabs(editorArea, { model, sessions, onSelect: select });
 robotPanel = new RobotPanel(editorArea, { model, sessions, commands });
 main.append(
-    splitter({ target: bottomArea, axis: "y", direction: -1, min: 120, max: () => window.innerHeight * 0.7, setting: "bottom-height", initial: Math.round(Math.min(300, Math.max(180, window.innerHeight * 0.3))), label: "Resize the bottom panel" }),
+    splitter({
+        target: bottomArea,
+        axis: "y",
+        direction: -1,
+        min: 120,
+        max: () => window.innerHeight * 0.7,
+        setting: "bottom-height",
+        initial: Math.round(Math.min(300, Math.max(180, window.innerHeight * 0.3))),
+        label: "Resize the bottom panel",
+    }),
     bottomArea,
 );
 const bottom = new BottomPanel(bottomArea, { model, commands, messages });
@@ -117,7 +134,10 @@ connection.on("hello", (hello) => {
     // A server that restarted lost the definitions: this page gives them back.
     const ours = model.definitions;
     const theirs = hello.definitions ?? { events: [], constants: [] };
-    const restarted = hellos > 1 && theirs.events.length + theirs.constants.length === 0 && ours.events.length + ours.constants.length > 0;
+    const restarted =
+        hellos > 1 &&
+        theirs.events.length + theirs.constants.length === 0 &&
+        ours.events.length + ours.constants.length > 0;
     if (restarted) hello = { ...hello, definitions: ours };
     model.applyHello(hello);
     if (restarted) commands.setDefinitions(ours);
