@@ -172,7 +172,8 @@ export async function startIde({ targets, port = null, arenaFeed = null } = {}) 
     const child = new Child("aseba-ide", args);
     await child.ready(/open http:\/\//);
     child.port = port;
-    child.url = `http://127.0.0.1:${port}/`;
+    // ?test: the page shows its parts as window.asebaIde (src/main.js).
+    child.url = `http://127.0.0.1:${port}/?test`;
     return child;
 }
 

@@ -55,9 +55,9 @@ EXTRA_CFLAGS_tests/ports/stm32f4/node_test := '-DQEMU_NODE_IMAGE="$(STM32F4_IMAG
 
 # The images and the console these tests run; order-only, so that they do
 # not enter the link.
-$(BUILD)/host-sanitize/tests/ports/stm32f4_vm_programs_test \
-$(BUILD)/host-sanitize/tests/ports/stm32f4_node_traces_test: | $(STM32F4_HARNESS).elf
-$(BUILD)/host-sanitize/tests/ports/stm32f4_node_test: | $(STM32F4_IMAGE).elf $(BUILD)/host-sanitize/bin/aseba
+$(BUILD)/host-sanitize/tests/qemu_vm_programs_test \
+$(BUILD)/host-sanitize/tests/qemu_node_traces_test: | $(STM32F4_HARNESS).elf
+$(BUILD)/host-sanitize/tests/qemu_node_test: | $(STM32F4_IMAGE).elf $(BUILD)/host-sanitize/bin/aseba
 
 # The VM's instructions per bytecode step on the Cortex-M4, for `make bench`.
 PROGRAMS += bench-qemu

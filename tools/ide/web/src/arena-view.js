@@ -19,7 +19,10 @@ export class ArenaView {
         this.onSelect = onSelect;
         this.active = null;
         this.drawPending = false;
-        this.canvas = h("canvas", { class: "arena-canvas", attrs: { role: "img", "aria-label": "The arena seen from above" } });
+        this.canvas = h("canvas", {
+            class: "arena-canvas",
+            attrs: { role: "img", "aria-label": "The arena seen from above" },
+        });
         this.time = h("span", { class: "section-summary" });
         this.legend = h("div", { class: "arena-legend" });
         this.element = h(
@@ -63,7 +66,15 @@ export class ArenaView {
         if (!arena) return;
         this.legend.append(`${arena.width} × ${arena.height} cm`);
         for (const area of arena.areas ?? [])
-            if (area.shock > 0) this.legend.append(h("span", { class: "legend-shock" }, h("span", { class: "legend-swatch", style: { background: rgb(area.color) } }), `knocks every ${area.shock} s`));
+            if (area.shock > 0)
+                this.legend.append(
+                    h(
+                        "span",
+                        { class: "legend-shock" },
+                        h("span", { class: "legend-swatch", style: { background: rgb(area.color) } }),
+                        `knocks every ${area.shock} s`,
+                    ),
+                );
     }
 
     requestDraw() {
@@ -144,12 +155,18 @@ export class ArenaView {
         context.strokeStyle = "rgba(0, 0, 0, 0.5)";
         context.lineWidth = 1;
         context.beginPath();
-        if (obstacle.shape === "cylinder") context.arc(g.x(obstacle.x), g.y(obstacle.y), obstacle.radius * g.scale, 0, 2 * Math.PI);
+        if (obstacle.shape === "cylinder")
+            context.arc(g.x(obstacle.x), g.y(obstacle.y), obstacle.radius * g.scale, 0, 2 * Math.PI);
         else {
             context.save();
             context.translate(g.x(obstacle.x), g.y(obstacle.y));
             context.rotate((-obstacle.heading * Math.PI) / 180);
-            context.rect((-obstacle.length / 2) * g.scale, (-obstacle.width / 2) * g.scale, obstacle.length * g.scale, obstacle.width * g.scale);
+            context.rect(
+                (-obstacle.length / 2) * g.scale,
+                (-obstacle.width / 2) * g.scale,
+                obstacle.length * g.scale,
+                obstacle.width * g.scale,
+            );
             context.restore();
         }
         context.fill();
@@ -201,7 +218,13 @@ export class ArenaView {
         for (let led = 0; led < 8; led++) {
             const angle = heading + (led * Math.PI) / 4;
             context.beginPath();
-            context.arc(cx + Math.cos(angle) * r * 0.78, cy + Math.sin(angle) * r * 0.78, Math.max(1.5, r * 0.16), 0, 2 * Math.PI);
+            context.arc(
+                cx + Math.cos(angle) * r * 0.78,
+                cy + Math.sin(angle) * r * 0.78,
+                Math.max(1.5, r * 0.16),
+                0,
+                2 * Math.PI,
+            );
             context.fillStyle = robot.leds?.[led] ? LED_ON : LED_OFF;
             context.fill();
         }
@@ -214,7 +237,13 @@ export class ArenaView {
         context.stroke();
         if (robot.front) {
             context.beginPath();
-            context.arc(cx + Math.cos(heading) * r * 0.55, cy + Math.sin(heading) * r * 0.55, Math.max(1.5, r * 0.14), 0, 2 * Math.PI);
+            context.arc(
+                cx + Math.cos(heading) * r * 0.55,
+                cy + Math.sin(heading) * r * 0.55,
+                Math.max(1.5, r * 0.14),
+                0,
+                2 * Math.PI,
+            );
             context.fillStyle = LED_ON;
             context.fill();
         }

@@ -3,7 +3,13 @@
 // numbers in three bases, operators), indentation of blocks, and
 // completion of the robot's names.
 
-import { StreamLanguage, StringStream, LanguageSupport, HighlightStyle, syntaxHighlighting } from "@codemirror/language";
+import {
+    StreamLanguage,
+    StringStream,
+    LanguageSupport,
+    HighlightStyle,
+    syntaxHighlighting,
+} from "@codemirror/language";
 import { tags } from "@lezer/highlight";
 
 // Every keyword of the language, by role.
@@ -17,15 +23,26 @@ export const KEYWORDS = [...CONTROL_KEYWORDS, ...DEFINITION_KEYWORDS, ...CALL_KE
 export const CONTEXTUAL_KEYWORDS = ["local"];
 const LOCAL_DECLARATION = /^\s+[\p{L}_][\p{L}\p{N}_.]*/u;
 
-const ROLE = new Map([
-    ...CONTROL_KEYWORDS.map((word) => [word, "controlKeyword"]),
-    ...DEFINITION_KEYWORDS.map((word) => [word, "definitionKeyword"]),
-    ...CALL_KEYWORDS.map((word) => [word, "keyword"]),
-    ...OPERATOR_KEYWORDS.map((word) => [word, "operatorKeyword"]),
-]);
+// Each keyword's highlighting role.
+/** @type {Map<string, string>} */
+const ROLE = new Map();
+for (const [words, role] of /** @type {[string[], string][]} */ ([
+    [CONTROL_KEYWORDS, "controlKeyword"],
+    [DEFINITION_KEYWORDS, "definitionKeyword"],
+    [CALL_KEYWORDS, "keyword"],
+    [OPERATOR_KEYWORDS, "operatorKeyword"],
+]))
+    for (const word of words) ROLE.set(word, role);
 
 // What the word after a keyword names.
-const NAMED_AFTER = { call: "functionName", callsub: "subroutineName", sub: "subroutineName", onevent: "eventName", emit: "eventName", _emit: "eventName" };
+const NAMED_AFTER = {
+    call: "functionName",
+    callsub: "subroutineName",
+    sub: "subroutineName",
+    onevent: "eventName",
+    emit: "eventName",
+    _emit: "eventName",
+};
 
 // Keywords that open a block closed by `end`, and those that continue one.
 const OPENS_BLOCK = new Set(["if", "while", "for", "when"]);
@@ -160,8 +177,10 @@ function completionSource(namesOf) {
         const before = context.state.doc.sliceString(Math.max(0, word.from - 12), word.from);
         const names = namesOf();
         let options;
-        if (/\bcall\s+$/.test(before)) options = names.natives.map((native) => ({ label: native.name, type: "function", info: native.info }));
-        else if (/\b(onevent|emit)\s+$/.test(before)) options = names.events.map((name) => ({ label: name, type: "event" }));
+        if (/\bcall\s+$/.test(before))
+            options = names.natives.map((native) => ({ label: native.name, type: "function", info: native.info }));
+        else if (/\b(onevent|emit)\s+$/.test(before))
+            options = names.events.map((name) => ({ label: name, type: "event" }));
         else
             options = [
                 ...KEYWORDS.map((label) => ({ label, type: "keyword" })),

@@ -17,7 +17,14 @@ export class BottomPanel {
         const titles = { events: "Events", plot: "Plot", constants: "Constants" };
         this.panes = panes;
         this.tabs = Object.keys(panes).map((key) =>
-            h("button", { type: "button", class: "bottom-tab", text: titles[key], attrs: { role: "tab", "aria-controls": `pane-${key}` }, dataset: { pane: key }, onClick: () => this.show(key) }),
+            h("button", {
+                type: "button",
+                class: "bottom-tab",
+                text: titles[key],
+                attrs: { role: "tab", "aria-controls": `pane-${key}` },
+                dataset: { pane: key },
+                onClick: () => this.show(key),
+            }),
         );
         for (const [key, pane] of Object.entries(panes)) {
             pane.id = `pane-${key}`;
@@ -38,7 +45,14 @@ export class BottomPanel {
         this.sender = new EventSender(eventSide, { model, commands, messages });
         this.monitor = new EventMonitor(panes.events, { model });
         this.plot = new PlotPanel(panes.plot, { model, messages });
-        const constantsBox = h("div", { class: "constants-box" }, h("p", { class: "panel-note", text: "Constants are shared by every robot's script: defined here once, used by name (for loops, array sizes, thresholds)." }));
+        const constantsBox = h(
+            "div",
+            { class: "constants-box" },
+            h("p", {
+                class: "panel-note",
+                text: "Constants are shared by every robot's script: defined here once, used by name (for loops, array sizes, thresholds).",
+            }),
+        );
         panes.constants.append(constantsBox);
         this.constants = new DefinitionList(constantsBox, { kind: "constants", model, commands, messages });
         this.show(loadSetting("bottom-tab", "events"));

@@ -47,7 +47,9 @@ export class Commands {
             const session = this.sessions.ensure(name);
             return { robot: name, source: session.text(), breakpoints: session.breakpointLines() };
         });
-        const tooLong = programs.filter((program) => new TextEncoder().encode(program.source).length > MAX_SCRIPT_BYTES);
+        const tooLong = programs.filter(
+            (program) => new TextEncoder().encode(program.source).length > MAX_SCRIPT_BYTES,
+        );
         if (tooLong.length) {
             this.messages.error(
                 "Nothing was loaded: a script is too long.",
@@ -67,7 +69,9 @@ export class Commands {
                 for (const failure of reply.failures) this.sessions.get(failure.robot)?.showLoadFailure(failure);
                 this.messages.error(
                     "Nothing was loaded: a program does not compile.",
-                    reply.failures.map((failure) => `${this.model.label(failure.robot)}: ${compileErrorText(failure.error)}`),
+                    reply.failures.map(
+                        (failure) => `${this.model.label(failure.robot)}: ${compileErrorText(failure.error)}`,
+                    ),
                 );
             } else if (reply.results) {
                 this.loaded(programs, reply.results);
@@ -97,7 +101,9 @@ export class Commands {
         const text = this.sessions.ensure(name).text();
         const others = this.model.sortedRobots().filter((robot) => robot.robot !== name);
         for (const robot of others) this.sessions.ensure(robot.robot).setText(text);
-        this.messages.success(`The script of ${this.model.label(name)} is now in the editors of ${plural(others.length, "robot")} (Ctrl+Z in an editor takes it back).`);
+        this.messages.success(
+            `The script of ${this.model.label(name)} is now in the editors of ${plural(others.length, "robot")} (Ctrl+Z in an editor takes it back).`,
+        );
     }
 
     // `action` on each robot of `names`: run, pause, step, stop, reset,
@@ -113,7 +119,9 @@ export class Commands {
             await this.connection.request({ type: "control", robots: names, action });
             if (REPORTED_ACTIONS.has(action)) {
                 const what = names.length === 1 ? this.model.label(names[0]) : plural(names.length, "robot");
-                this.messages.success(action === "store" ? `Program written to the flash of ${what}.` : `Rebooting ${what}.`);
+                this.messages.success(
+                    action === "store" ? `Program written to the flash of ${what}.` : `Rebooting ${what}.`,
+                );
             }
             return true;
         } catch (error) {
@@ -136,13 +144,20 @@ export class Commands {
         const file = await pickTextFile(".aesl,.xml,application/xml,text/xml");
         if (!file) return;
         if (new TextEncoder().encode(file.text).length > MAX_PROJECT_BYTES) {
-            this.messages.error(`${file.name} is larger than ${MAX_PROJECT_BYTES / 1024 / 1024} MB: it is not an Aseba project.`);
+            this.messages.error(
+                `${file.name} is larger than ${MAX_PROJECT_BYTES / 1024 / 1024} MB: it is not an Aseba project.`,
+            );
             return;
         }
         try {
             const reply = await this.connection.request({ type: "open-project", name: file.name, content: file.text });
-            const details = (reply.waitingPrograms ?? []).map((program) => `waiting for "${program.name}" (node ${program.id}) to join the network`);
-            this.messages.success(`Opened ${file.name}: ${plural(reply.matched.length, "robot")} got ${reply.matched.length === 1 ? "its" : "their"} program.`, details);
+            const details = (reply.waitingPrograms ?? []).map(
+                (program) => `waiting for "${program.name}" (node ${program.id}) to join the network`,
+            );
+            this.messages.success(
+                `Opened ${file.name}: ${plural(reply.matched.length, "robot")} got ${reply.matched.length === 1 ? "its" : "their"} program.`,
+                details,
+            );
         } catch (error) {
             this.messages.error(`Cannot open ${file.name}: ${error.message}`);
         }

@@ -75,7 +75,8 @@ export class Connection extends Emitter {
         socket.addEventListener("close", (event) => {
             if (this.socket !== socket) return;
             this.socket = null;
-            this.lastClose = event.reason || (event.code === 1006 ? "the server is unreachable" : `closed (${event.code})`);
+            this.lastClose =
+                event.reason || (event.code === 1006 ? "the server is unreachable" : `closed (${event.code})`);
             this.failPending("the connection to the IDE server was lost before its answer");
             this.scheduleRetry();
         });

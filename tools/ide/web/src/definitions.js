@@ -16,7 +16,10 @@ const KINDS = {
         field: "size",
         fieldText: "Size",
         hint: "words of arguments, 0 to 258",
-        check: (value) => (Number.isInteger(value) && value >= 0 && value <= MAX_EVENT_SIZE ? null : `an event's size is 0 to ${MAX_EVENT_SIZE} words`),
+        check: (value) =>
+            Number.isInteger(value) && value >= 0 && value <= MAX_EVENT_SIZE
+                ? null
+                : `an event's size is 0 to ${MAX_EVENT_SIZE} words`,
         empty: "No global events: add one to emit it from a robot or from here.",
         fallback: 0,
     },
@@ -25,7 +28,8 @@ const KINDS = {
         field: "value",
         fieldText: "Value",
         hint: "-32768 to 32767",
-        check: (value) => (Number.isInteger(value) && value >= -32768 && value <= 32767 ? null : "a constant is -32768 to 32767"),
+        check: (value) =>
+            Number.isInteger(value) && value >= -32768 && value <= 32767 ? null : "a constant is -32768 to 32767",
         empty: "No constants: what you add here is known to every robot's script.",
         fallback: 0,
     },
@@ -40,8 +44,18 @@ export class DefinitionList {
         this.commands = commands;
         this.messages = messages;
         this.list = h("div", { class: "definition-list", attrs: { role: "list", "aria-label": this.spec.title } });
-        this.nameInput = h("input", { class: "text-input", placeholder: "name", label: `Name of the new ${kind === "events" ? "event" : "constant"}` });
-        this.valueInput = h("input", { class: "text-input number", type: "number", value: "0", label: `${this.spec.fieldText} of the new ${kind === "events" ? "event" : "constant"}`, title: this.spec.hint });
+        this.nameInput = h("input", {
+            class: "text-input",
+            placeholder: "name",
+            label: `Name of the new ${kind === "events" ? "event" : "constant"}`,
+        });
+        this.valueInput = h("input", {
+            class: "text-input number",
+            type: "number",
+            value: "0",
+            label: `${this.spec.fieldText} of the new ${kind === "events" ? "event" : "constant"}`,
+            title: this.spec.hint,
+        });
         const add = (event) => {
             event.preventDefault();
             this.add();
@@ -56,7 +70,12 @@ export class DefinitionList {
                 { class: "definition-form", onSubmit: add },
                 this.nameInput,
                 this.valueInput,
-                h("button", { type: "submit", class: "button", label: `Add the ${kind === "events" ? "event" : "constant"}` }, iconElement(icons.add), h("span", { class: "button-text", text: "Add" })),
+                h(
+                    "button",
+                    { type: "submit", class: "button", label: `Add the ${kind === "events" ? "event" : "constant"}` },
+                    iconElement(icons.add),
+                    h("span", { class: "button-text", text: "Add" }),
+                ),
             ),
         );
         container.append(this.element);
@@ -87,7 +106,12 @@ export class DefinitionList {
                     { class: "definition-row", attrs: { role: "listitem" }, dataset: { name: entry.name } },
                     h("span", { class: "definition-name", text: entry.name }),
                     value,
-                    button({ icon: icons.close, label: `Remove ${entry.name}`, className: "icon-only", onClick: () => this.remove(index) }),
+                    button({
+                        icon: icons.close,
+                        label: `Remove ${entry.name}`,
+                        className: "icon-only",
+                        onClick: () => this.remove(index),
+                    }),
                 );
             }),
         );
@@ -102,7 +126,8 @@ export class DefinitionList {
         const name = this.nameInput.value.trim();
         const value = Number(this.valueInput.value);
         let problem = null;
-        if (!IDENTIFIER.test(name)) problem = `"${name}" is not a name: letters, digits, _ and ., starting with a letter or _`;
+        if (!IDENTIFIER.test(name))
+            problem = `"${name}" is not a name: letters, digits, _ and ., starting with a letter or _`;
         else if (this.entries().some((entry) => entry.name === name)) problem = `${name} is already defined`;
         else problem = this.spec.check(value);
         if (problem) {
@@ -139,7 +164,11 @@ export class EventSender {
         this.commands = commands;
         this.messages = messages;
         this.select = h("select", { class: "select", label: "Event to send" });
-        this.args = h("input", { class: "text-input", placeholder: "arguments: 1, 2, 3", label: "Arguments of the event" });
+        this.args = h("input", {
+            class: "text-input",
+            placeholder: "arguments: 1, 2, 3",
+            label: "Arguments of the event",
+        });
         this.element = h(
             "section",
             { class: "event-sender" },
@@ -155,7 +184,12 @@ export class EventSender {
                 },
                 this.select,
                 this.args,
-                h("button", { type: "submit", class: "button primary", label: "Send the event" }, iconElement(icons.send), h("span", { class: "button-text", text: "Send" })),
+                h(
+                    "button",
+                    { type: "submit", class: "button primary", label: "Send the event" },
+                    iconElement(icons.send),
+                    h("span", { class: "button-text", text: "Send" }),
+                ),
             ),
         );
         container.append(this.element);
@@ -189,7 +223,9 @@ export class EventSender {
             return;
         }
         if (args.length > definition.size) {
-            this.messages.error(`Event ${name} not sent: it takes ${definition.size} argument${definition.size === 1 ? "" : "s"}, not ${args.length}.`);
+            this.messages.error(
+                `Event ${name} not sent: it takes ${definition.size} argument${definition.size === 1 ? "" : "s"}, not ${args.length}.`,
+            );
             return;
         }
         await this.commands.emit(name, args);

@@ -38,6 +38,10 @@ export function setChildren(element, ...children) {
 
 // A button with an icon (an SVG path from icons.js), a text, and an
 // accessible name.
+/**
+ * @param {{ icon?: string, text?: string, label?: string, onClick?: (event: MouseEvent) => void,
+ *           className?: string, disabled?: boolean }} options
+ */
 export function button({ icon, text, label, onClick, className = "", disabled = false }) {
     return h(
         "button",

@@ -73,8 +73,10 @@ const markers = {
     refused: new BreakpointMarker("refused"),
 };
 
+/** @type {import("@codemirror/state").StateEffectType<number>} */
 const toggleBreakpointEffect = StateEffect.define({ map: (position, mapping) => mapping.mapPos(position) });
 // Replaces the markers' statuses: {line: "set" | "refused"}.
+/** @type {import("@codemirror/state").StateEffectType<Record<number, string>>} */
 const breakpointStatusEffect = StateEffect.define();
 
 const breakpointField = StateField.define({
@@ -136,6 +138,7 @@ export function breakpointsAt(state, lines) {
 // A transaction spec giving the robot's answer about each breakpoint:
 // results is [{line, set}].
 export function breakpointStatus(results) {
+    /** @type {Record<number, string>} */
     const statuses = {};
     for (const result of results) statuses[result.line] = result.set ? "set" : "refused";
     return { effects: breakpointStatusEffect.of(statuses) };
@@ -177,7 +180,9 @@ class RuntimeErrorWidget extends WidgetType {
 }
 
 // {line, message} or null; and the execution line or 0.
+/** @type {import("@codemirror/state").StateEffectType<{ line: number, message: string } | null>} */
 const runtimeErrorEffect = StateEffect.define();
+/** @type {import("@codemirror/state").StateEffectType<number>} */
 const executionLineEffect = StateEffect.define();
 
 const robotLinesField = StateField.define({
@@ -202,7 +207,11 @@ const robotLinesField = StateField.define({
         if (runtimeError && runtimeError.line >= 1 && runtimeError.line <= doc.lines) {
             const line = doc.line(runtimeError.line);
             ranges.push(Decoration.line({ class: "cm-runtime-error-line" }).range(line.from));
-            ranges.push(Decoration.widget({ widget: new RuntimeErrorWidget(runtimeError.message), block: true, side: 1 }).range(line.to));
+            ranges.push(
+                Decoration.widget({ widget: new RuntimeErrorWidget(runtimeError.message), block: true, side: 1 }).range(
+                    line.to,
+                ),
+            );
         }
         if (executionLine >= 1 && executionLine <= doc.lines)
             ranges.push(Decoration.line({ class: "cm-execution-line" }).range(doc.line(executionLine).from));
@@ -217,7 +226,9 @@ export function executionLine(line) {
 }
 
 export function runtimeError(error) {
-    return { effects: runtimeErrorEffect.of(error && error.line > 0 ? { line: error.line, message: error.message } : null) };
+    return {
+        effects: runtimeErrorEffect.of(error && error.line > 0 ? { line: error.line, message: error.message } : null),
+    };
 }
 
 // --- compile errors ----------------------------------------------------------
@@ -254,10 +265,16 @@ const theme = EditorView.theme({
     "&": { height: "100%", fontSize: "13.5px" },
     ".cm-scroller": { fontFamily: "var(--font-code)", lineHeight: "1.55" },
     ".cm-content": { caretColor: "var(--text)" },
-    ".cm-gutters": { background: "var(--editor-gutter)", color: "var(--text-faint)", borderRight: "1px solid var(--border)" },
+    ".cm-gutters": {
+        background: "var(--editor-gutter)",
+        color: "var(--text-faint)",
+        borderRight: "1px solid var(--border)",
+    },
     ".cm-activeLineGutter": { background: "var(--editor-active-gutter)", color: "var(--text)" },
     ".cm-activeLine": { background: "var(--editor-active-line)" },
-    "&.cm-focused .cm-selectionBackground, .cm-selectionBackground, ::selection": { background: "var(--editor-selection) !important" },
+    "&.cm-focused .cm-selectionBackground, .cm-selectionBackground, ::selection": {
+        background: "var(--editor-selection) !important",
+    },
     ".cm-tooltip": { background: "var(--surface)", border: "1px solid var(--border)", color: "var(--text)" },
     ".cm-panels": { background: "var(--surface-2)", color: "var(--text)" },
 });
@@ -300,7 +317,8 @@ export function editorExtensions(hooks) {
             indentWithTab,
         ]),
         EditorView.updateListener.of((update) => {
-            if (update.docChanged && !update.transactions.some((transaction) => transaction.annotation(fromServer))) hooks.onChange(update);
+            if (update.docChanged && !update.transactions.some((transaction) => transaction.annotation(fromServer)))
+                hooks.onChange(update);
         }),
     ];
 }

@@ -20,10 +20,25 @@ export class EventMonitor {
         this.paused = false;
         this.unseen = 0;
 
-        this.sourceFilter = h("select", { class: "select", label: "Show the entries of", onChange: () => this.render() });
+        this.sourceFilter = h("select", {
+            class: "select",
+            label: "Show the entries of",
+            onChange: () => this.render(),
+        });
         this.eventFilter = h("select", { class: "select", label: "Show the event", onChange: () => this.render() });
-        this.textFilter = h("input", { type: "search", class: "panel-filter inline", placeholder: "Filter text", label: "Filter the log by text", onInput: () => this.render() });
-        this.pauseButton = button({ icon: icons.pause, text: "Pause", label: "Pause the monitor", onClick: () => this.setPaused(!this.paused) });
+        this.textFilter = h("input", {
+            type: "search",
+            class: "panel-filter inline",
+            placeholder: "Filter text",
+            label: "Filter the log by text",
+            onInput: () => this.render(),
+        });
+        this.pauseButton = button({
+            icon: icons.pause,
+            text: "Pause",
+            label: "Pause the monitor",
+            onClick: () => this.setPaused(!this.paused),
+        });
         this.count = h("span", { class: "monitor-count", attrs: { "aria-live": "off" } });
         this.body = h("tbody");
         this.scroller = h(
@@ -32,7 +47,17 @@ export class EventMonitor {
             h(
                 "table",
                 { class: "monitor-table", attrs: { "aria-label": "Event log" } },
-                h("thead", {}, h("tr", {}, ["Time", "Source", "Event", "Arguments"].map((title) => h("th", { text: title, attrs: { scope: "col" } })))),
+                h(
+                    "thead",
+                    {},
+                    h(
+                        "tr",
+                        {},
+                        ["Time", "Source", "Event", "Arguments"].map((title) =>
+                            h("th", { text: title, attrs: { scope: "col" } }),
+                        ),
+                    ),
+                ),
                 this.body,
             ),
         );
@@ -48,7 +73,12 @@ export class EventMonitor {
                 this.textFilter,
                 this.pauseButton,
                 button({ icon: icons.clear, text: "Clear", label: "Clear the log", onClick: () => this.clear() }),
-                button({ icon: icons.download, text: "CSV", label: "Export the log as CSV", onClick: () => this.exportCsv() }),
+                button({
+                    icon: icons.download,
+                    text: "CSV",
+                    label: "Export the log as CSV",
+                    onClick: () => this.exportCsv(),
+                }),
                 this.count,
             ),
             this.scroller,
@@ -112,10 +142,16 @@ export class EventMonitor {
     // What an entry says, cell by cell: [source, event, arguments, kind].
     cells(entry) {
         const source = this.sourceText(entry.source);
-        if (entry.kind === "event") return [source, this.model.eventName(entry), (entry.args ?? []).join(", "), "event"];
+        if (entry.kind === "event")
+            return [source, this.model.eventName(entry), (entry.args ?? []).join(", "), "event"];
         if (entry.kind === "error") {
             const error = entry.error ?? {};
-            return [source, "run-time error", `${error.message ?? ""}${error.line ? ` (line ${error.line})` : ""}`, "error"];
+            return [
+                source,
+                "run-time error",
+                `${error.message ?? ""}${error.line ? ` (line ${error.line})` : ""}`,
+                "error",
+            ];
         }
         return [source, "malformed message", entry.message ?? "", "malformed"];
     }
@@ -139,7 +175,8 @@ export class EventMonitor {
         return (entry) => {
             if (source && entry.source !== source) return false;
             if (event === "@errors" && entry.kind === "event") return false;
-            if (event && event !== "@errors" && (entry.kind !== "event" || this.model.eventName(entry) !== event)) return false;
+            if (event && event !== "@errors" && (entry.kind !== "event" || this.model.eventName(entry) !== event))
+                return false;
             if (text && !this.cells(entry).slice(0, 3).join(" ").toLowerCase().includes(text)) return false;
             return true;
         };
@@ -158,7 +195,9 @@ export class EventMonitor {
 
     renderCount() {
         const total = this.entries.length;
-        this.count.textContent = this.paused ? `paused, ${this.unseen} new` : `${total} entr${total === 1 ? "y" : "ies"}`;
+        this.count.textContent = this.paused
+            ? `paused, ${this.unseen} new`
+            : `${total} entr${total === 1 ? "y" : "ies"}`;
     }
 
     renderFilters() {
@@ -168,17 +207,23 @@ export class EventMonitor {
         setChildren(
             this.sourceFilter,
             h("option", { value: "", text: "All sources" }),
-            this.model.sortedRobots().map((robot) => h("option", { value: robot.robot, text: this.model.label(robot) })),
+            this.model
+                .sortedRobots()
+                .map((robot) => h("option", { value: robot.robot, text: this.model.label(robot) })),
             h("option", { value: "ide", text: "This IDE" }),
             h("option", { value: "host", text: "Other tools" }),
         );
         setChildren(
             this.eventFilter,
             h("option", { value: "", text: "All events" }),
-            this.model.definitions.events.map((definition) => h("option", { value: definition.name, text: definition.name })),
+            this.model.definitions.events.map((definition) =>
+                h("option", { value: definition.name, text: definition.name }),
+            ),
             h("option", { value: "@errors", text: "Errors only" }),
         );
-        this.sourceFilter.value = [...this.sourceFilter.options].some((option) => option.value === source) ? source : "";
+        this.sourceFilter.value = [...this.sourceFilter.options].some((option) => option.value === source)
+            ? source
+            : "";
         this.eventFilter.value = [...this.eventFilter.options].some((option) => option.value === event) ? event : "";
     }
 

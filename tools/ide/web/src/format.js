@@ -12,16 +12,18 @@ export function clockTime(milliseconds) {
 
 // One CSV line per row, fields quoted when they need it (RFC 4180).
 export function csv(rows) {
-    return rows
-        .map((row) =>
-            row
-                .map((field) => {
-                    const text = field === null || field === undefined ? "" : String(field);
-                    return /[",\r\n]/.test(text) ? `"${text.replaceAll('"', '""')}"` : text;
-                })
-                .join(","),
-        )
-        .join("\r\n") + "\r\n";
+    return (
+        rows
+            .map((row) =>
+                row
+                    .map((field) => {
+                        const text = field === null || field === undefined ? "" : String(field);
+                        return /[",\r\n]/.test(text) ? `"${text.replaceAll('"', '""')}"` : text;
+                    })
+                    .join(","),
+            )
+            .join("\r\n") + "\r\n"
+    );
 }
 
 // "aseba-events-2024-05-01T14-03-07.csv"
@@ -37,7 +39,11 @@ export function parseIntegers(text) {
         if (!/^[-+]?(\d+|0x[0-9a-f]+|0b[01]+)$/i.test(part)) throw new Error(`"${part}" is not an integer`);
         const negative = part.startsWith("-");
         const digits = part.replace(/^[-+]/, "");
-        let value = /^0x/i.test(digits) ? parseInt(digits.slice(2), 16) : /^0b/i.test(digits) ? parseInt(digits.slice(2), 2) : parseInt(digits, 10);
+        let value = /^0x/i.test(digits)
+            ? parseInt(digits.slice(2), 16)
+            : /^0b/i.test(digits)
+              ? parseInt(digits.slice(2), 2)
+              : parseInt(digits, 10);
         if (negative) value = -value;
         if (value < -32768 || value > 65535) throw new Error(`${part} is out of the 16-bit range`);
         return value > 32767 ? value - 65536 : value;

@@ -1,5 +1,6 @@
-// The page's entry point: builds the layout, connects to the IDE server and
-// routes its messages (docs/ide-protocol.md) to the model and the views.
+// The page's entry point: builds the layout and its parts, and hands them to
+// the controller (controller.js), which routes the IDE server's messages
+// (docs/ide-protocol.md) to them.
 
 import "./style.css";
 import "./panels.css";
@@ -17,7 +18,7 @@ import { RobotTabs } from "./robot-tabs.js";
 import { RobotPanel } from "./robot-panel.js";
 import { BottomPanel } from "./bottom-panel.js";
 import { splitter } from "./layout.js";
-import { loadSetting, saveSetting } from "./storage.js";
+import { Controller } from "./controller.js";
 
 const root = document.getElementById("app");
 const scheme = location.protocol === "https:" ? "wss" : "ws";
@@ -38,6 +39,7 @@ const topArea = h("div", { class: "top-area" });
 root.append(topArea);
 const messages = new MessageBar(root);
 const commands = new Commands({ connection, model, sessions, messages });
+const controller = new Controller({ connection, model, sessions, commands, messages });
 new TopBar(topArea, { connection, model, commands });
 
 const sidebar = h("aside", { class: "sidebar", attrs: { "aria-label": "Network and arena" } });
@@ -50,138 +52,44 @@ root.append(
         "div",
         { class: "workbench" },
         sidebar,
-        splitter({ target: sidebar, axis: "x", min: 200, max: () => window.innerWidth * 0.45, setting: "sidebar-width", initial: 300, label: "Resize the side panel" }),
+        splitter({
+            target: sidebar,
+            axis: "x",
+            min: 200,
+            max: () => window.innerWidth * 0.45,
+            setting: "sidebar-width",
+            initial: 300,
+            label: "Resize the side panel",
+        }),
         main,
     ),
 );
 
-const select = (name) => {
-    robotPanel.show(name);
-    tabs.setActive(name);
-    network.setActive(name);
-    arena.setActive(name);
-    saveSetting("active-robot", name);
-    updateWatch();
-};
+const select = (name) => controller.select(name);
 
 const network = new NetworkView(sidebar, { model, onSelect: select });
 const arena = new ArenaView(sidebar, { model, onSelect: select });
 const tabs = new RobotTabs(editorArea, { model, sessions, onSelect: select });
 robotPanel = new RobotPanel(editorArea, { model, sessions, commands });
 main.append(
-    splitter({ target: bottomArea, axis: "y", direction: -1, min: 120, max: () => window.innerHeight * 0.7, setting: "bottom-height", initial: Math.round(Math.min(300, Math.max(180, window.innerHeight * 0.3))), label: "Resize the bottom panel" }),
+    splitter({
+        target: bottomArea,
+        axis: "y",
+        direction: -1,
+        min: 120,
+        max: () => window.innerHeight * 0.7,
+        setting: "bottom-height",
+        initial: Math.round(Math.min(300, Math.max(180, window.innerHeight * 0.3))),
+        label: "Resize the bottom panel",
+    }),
     bottomArea,
 );
 const bottom = new BottomPanel(bottomArea, { model, commands, messages });
 
-// --- what the page watches --------------------------------------------------------
+// For the browser tests, which open the page as /?test
+// (tests/ide/harness.mjs): the page's parts, read-only by convention.
+if (new URLSearchParams(location.search).has("test"))
+    window.asebaIde = { connection, model, sessions, commands, robotPanel, bottom, controller };
 
-let watched = "";
-// The robot shown and the robots plotted get `variables` messages.
-function updateWatch(force = false) {
-    const robots = new Set(bottom.plot.watchedRobots());
-    if (robotPanel.robotName && model.robots.get(robotPanel.robotName)?.present) robots.add(robotPanel.robotName);
-    const list = [...robots].sort();
-    const key = list.join(",");
-    if ((key === watched && !force) || !connection.open) return;
-    watched = key;
-    connection.request({ type: "watch", robots: list }).catch(() => {
-        watched = "";
-    });
-}
-bottom.plot.on("watch", () => updateWatch());
-
-// The line where a robot stands, in its editor.
-function showExecution(robot) {
-    const session = sessions.get(robot.robot);
-    if (!session) return;
-    const stopped = robot.present && (robot.state === "stepping" || robot.state === "stopped");
-    const line = stopped ? (robot.line ?? 0) : 0;
-    if (session.executionLine === line) return;
-    session.executionLine = line;
-    session.setExecutionLine(line);
-}
-
-function ensureSelection() {
-    if (robotPanel.robotName && model.robots.has(robotPanel.robotName)) return;
-    const remembered = loadSetting("active-robot", null);
-    const first = model.robots.has(remembered) ? remembered : model.sortedRobots()[0]?.robot;
-    if (first) select(first);
-}
-
-// --- the server's messages ---------------------------------------------------------
-
-let hellos = 0;
-connection.on("hello", (hello) => {
-    hellos++;
-    // A server that restarted lost the definitions: this page gives them back.
-    const ours = model.definitions;
-    const theirs = hello.definitions ?? { events: [], constants: [] };
-    const restarted = hellos > 1 && theirs.events.length + theirs.constants.length === 0 && ours.events.length + ours.constants.length > 0;
-    if (restarted) hello = { ...hello, definitions: ours };
-    model.applyHello(hello);
-    if (restarted) commands.setDefinitions(ours);
-    sessions.applyHello(hello);
-    bottom.monitor.reset(hello.log ?? []);
-    for (const robot of model.robots.values()) showExecution(robot);
-    ensureSelection();
-    robotPanel.renderRobot();
-    updateWatch(true);
-});
-connection.on("links", (message) => model.applyLinks(message.links));
-connection.on("robot", ({ robot }) => {
-    const previous = model.robots.get(robot.robot);
-    model.applyRobot(robot);
-    const session = sessions.ensure(robot.robot);
-    const ready = sessions.canCompile(robot.robot);
-    const wasReady = Boolean(previous && previous.present && previous.described && previous.compatible);
-    if (ready && !wasReady) session.recompile();
-    showExecution(robot);
-    ensureSelection();
-    updateWatch();
-});
-connection.on("script", (message) => sessions.applyScript(message.robot, message.source));
-connection.on("definitions", (message) => {
-    model.applyDefinitions(message.definitions);
-    sessions.recompileAll();
-});
-connection.on("project", (message) => {
-    model.applyProject(message);
-    sessions.applyProject(message);
-});
-connection.on("variables", (message) => {
-    robotPanel.showValues(message);
-    bottom.plot.addVariables(message);
-});
-connection.on("log", (message) => {
-    bottom.monitor.add(message.entries);
-    bottom.plot.addEvents(message.entries);
-});
-connection.on("runtime-error", (message) => {
-    sessions.ensure(message.robot).setRuntimeError(message.error);
-    const robot = model.robots.get(message.robot);
-    if (robot) model.applyRobot({ ...robot, lastError: message.error });
-});
-connection.on("status", (message) => model.applyStatus(message));
-connection.on("arena", (message) => model.applyArena(message.arena));
-connection.on("arena-state", (message) => model.applyArenaState(message));
-connection.on("orphan-error", (error) => messages.error(`The IDE server refused a message: ${error}`));
-connection.on("state", (state) => {
-    if (state !== "open") watched = "";
-});
-
-sessions.on("error", (text) => messages.error(text));
-let storageWarned = false;
-sessions.on("storage-full", () => {
-    if (storageWarned) return;
-    storageWarned = true;
-    messages.warning("This browser's storage is full: scripts are no longer kept in the browser, only on the server.");
-});
-
-window.addEventListener("pagehide", () => sessions.persistAll());
-window.addEventListener("beforeunload", () => sessions.persistAll());
-
-// For tests and the curious: the page's state, read-only by convention.
-window.asebaIde = { connection, model, sessions, commands, robotPanel, bottom };
-
-connection.start();
+// The server's messages, to the parts of the page.
+controller.start({ robotPanel, tabs, network, arena, bottom });

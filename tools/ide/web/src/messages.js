@@ -25,7 +25,18 @@ export class MessageBar {
         const message = h(
             "div",
             { class: `message message-${kind}`, attrs: { role: kind === "error" ? "alert" : "status" } },
-            h("div", { class: "message-body" }, h("div", { class: "message-text", text }), details.length ? h("ul", { class: "message-details" }, details.map((line) => h("li", { text: line }))) : null),
+            h(
+                "div",
+                { class: "message-body" },
+                h("div", { class: "message-text", text }),
+                details.length
+                    ? h(
+                          "ul",
+                          { class: "message-details" },
+                          details.map((line) => h("li", { text: line })),
+                      )
+                    : null,
+            ),
             close,
         );
         this.element.append(message);

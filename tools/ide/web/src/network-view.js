@@ -17,8 +17,17 @@ export class NetworkView {
         this.active = null;
         this.rows = new Map(); // name -> {row, cells}
         this.summary = h("span", { class: "section-summary" });
-        this.filter = h("input", { type: "search", class: "panel-filter", placeholder: "Filter robots", label: "Filter robots by name, id or state", onInput: () => this.applyFilter() });
-        this.list = h("div", { class: "network-list", attrs: { role: "listbox", "aria-label": "Robots on the network" } });
+        this.filter = h("input", {
+            type: "search",
+            class: "panel-filter",
+            placeholder: "Filter robots",
+            label: "Filter robots by name, id or state",
+            onInput: () => this.applyFilter(),
+        });
+        this.list = h("div", {
+            class: "network-list",
+            attrs: { role: "listbox", "aria-label": "Robots on the network" },
+        });
         this.waiting = h("div", { class: "waiting-programs" });
         this.empty = h("div", { class: "panel-note", text: "No robot on the network yet." });
         this.element = h(

@@ -33,15 +33,35 @@ export class PlotPanel extends Emitter {
         // double-click zooms out.
         this.zoomed = false;
 
-        this.robotSelect = h("select", { class: "select", label: "Robot of the new series", onChange: () => this.renderSources() });
+        this.robotSelect = h("select", {
+            class: "select",
+            label: "Robot of the new series",
+            onChange: () => this.renderSources(),
+        });
         this.sourceSelect = h("select", { class: "select", label: "Variable or event of the new series" });
-        this.indexInput = h("input", { class: "text-input number", type: "number", min: "0", value: "0", label: "Index in the variable or argument of the event" });
+        this.indexInput = h("input", {
+            class: "text-input number",
+            type: "number",
+            min: "0",
+            value: "0",
+            label: "Index in the variable or argument of the event",
+        });
         this.seriesList = h("div", { class: "series-list", attrs: { role: "list", "aria-label": "Plotted series" } });
         this.windowButtons = WINDOWS.map((entry) =>
-            h("button", { type: "button", class: "segment", text: entry.text, label: `Show ${entry.seconds ? `the last ${entry.text}` : "everything"}`, dataset: { seconds: String(entry.seconds) }, onClick: () => this.setWindow(entry.seconds) }),
+            h("button", {
+                type: "button",
+                class: "segment",
+                text: entry.text,
+                label: `Show ${entry.seconds ? `the last ${entry.text}` : "everything"}`,
+                dataset: { seconds: String(entry.seconds) },
+                onClick: () => this.setWindow(entry.seconds),
+            }),
         );
         this.chart = h("div", { class: "plot-chart" });
-        this.empty = h("div", { class: "plot-empty", text: "Choose a robot and a variable or an event argument, then Add." });
+        this.empty = h("div", {
+            class: "plot-empty",
+            text: "Choose a robot and a variable or an event argument, then Add.",
+        });
 
         const form = h(
             "form",
@@ -55,7 +75,11 @@ export class PlotPanel extends Emitter {
             this.robotSelect,
             this.sourceSelect,
             h("label", { class: "inline-label" }, "index ", this.indexInput),
-            h("button", { type: "submit", class: "button", label: "Add the series to the plot" }, h("span", { class: "button-text", text: "Add" })),
+            h(
+                "button",
+                { type: "submit", class: "button", label: "Add the series to the plot" },
+                h("span", { class: "button-text", text: "Add" }),
+            ),
         );
         this.element = h(
             "div",
@@ -65,9 +89,23 @@ export class PlotPanel extends Emitter {
                 { class: "panel-toolbar" },
                 h("span", { class: "panel-title", text: "Plot" }),
                 form,
-                h("div", { class: "segmented", attrs: { role: "group", "aria-label": "Time window" } }, this.windowButtons),
-                button({ icon: icons.clear, text: "Clear", label: "Clear the plot's data", onClick: () => this.clear() }),
-                button({ icon: icons.download, text: "CSV", label: "Export the plot's data as CSV", onClick: () => this.exportCsv() }),
+                h(
+                    "div",
+                    { class: "segmented", attrs: { role: "group", "aria-label": "Time window" } },
+                    this.windowButtons,
+                ),
+                button({
+                    icon: icons.clear,
+                    text: "Clear",
+                    label: "Clear the plot's data",
+                    onClick: () => this.clear(),
+                }),
+                button({
+                    icon: icons.download,
+                    text: "CSV",
+                    label: "Export the plot's data as CSV",
+                    onClick: () => this.exportCsv(),
+                }),
             ),
             this.seriesList,
             h("div", { class: "plot-area" }, this.chart, this.empty),
@@ -97,7 +135,9 @@ export class PlotPanel extends Emitter {
         const selected = this.robotSelect.value;
         setChildren(
             this.robotSelect,
-            this.model.sortedRobots().map((robot) => h("option", { value: robot.robot, text: this.model.label(robot) })),
+            this.model
+                .sortedRobots()
+                .map((robot) => h("option", { value: robot.robot, text: this.model.label(robot) })),
         );
         if (this.model.robots.has(selected)) this.robotSelect.value = selected;
         this.renderSources();
@@ -109,10 +149,26 @@ export class PlotPanel extends Emitter {
         const variables = robot?.variables ?? [];
         setChildren(
             this.sourceSelect,
-            h("optgroup", { label: "Variables" }, variables.map((variable) => h("option", { value: `variable:${variable.name}`, text: variable.size > 1 ? `${variable.name}[${variable.size}]` : variable.name }))),
-            h("optgroup", { label: "Events" }, this.model.definitions.events.map((event) => h("option", { value: `event:${event.name}`, text: `event ${event.name}` }))),
+            h(
+                "optgroup",
+                { label: "Variables" },
+                variables.map((variable) =>
+                    h("option", {
+                        value: `variable:${variable.name}`,
+                        text: variable.size > 1 ? `${variable.name}[${variable.size}]` : variable.name,
+                    }),
+                ),
+            ),
+            h(
+                "optgroup",
+                { label: "Events" },
+                this.model.definitions.events.map((event) =>
+                    h("option", { value: `event:${event.name}`, text: `event ${event.name}` }),
+                ),
+            ),
         );
-        if ([...this.sourceSelect.options].some((option) => option.value === selected)) this.sourceSelect.value = selected;
+        if ([...this.sourceSelect.options].some((option) => option.value === selected))
+            this.sourceSelect.value = selected;
     }
 
     addFromForm() {
@@ -128,7 +184,9 @@ export class PlotPanel extends Emitter {
                 ? this.model.robots.get(robot)?.variables?.find((variable) => variable.name === name)?.size
                 : this.model.definitions.events.find((event) => event.name === name)?.size;
         if (!Number.isInteger(index) || index < 0 || (size !== undefined && index >= size)) {
-            this.messages.error(`${name} has ${size} ${kind === "variable" ? "word" : "argument"}${size === 1 ? "" : "s"}: index ${index} is out of it.`);
+            this.messages.error(
+                `${name} has ${size} ${kind === "variable" ? "word" : "argument"}${size === 1 ? "" : "s"}: index ${index} is out of it.`,
+            );
             return;
         }
         this.add({ robot, kind, name, index });
@@ -152,12 +210,17 @@ export class PlotPanel extends Emitter {
     }
 
     label(series) {
-        const what = series.kind === "variable" ? `${series.name}${this.isArray(series) ? `[${series.index}]` : ""}` : `${series.name}[${series.index}]`;
+        const what =
+            series.kind === "variable"
+                ? `${series.name}${this.isArray(series) ? `[${series.index}]` : ""}`
+                : `${series.name}[${series.index}]`;
         return `${this.model.label(series.robot)} · ${series.kind === "event" ? "event " : ""}${what}`;
     }
 
     isArray(series) {
-        const size = this.model.robots.get(series.robot)?.variables?.find((variable) => variable.name === series.name)?.size;
+        const size = this.model.robots
+            .get(series.robot)
+            ?.variables?.find((variable) => variable.name === series.name)?.size;
         return size === undefined || size > 1;
     }
 
@@ -178,7 +241,8 @@ export class PlotPanel extends Emitter {
             if (series.kind !== "variable" || series.robot !== message.robot) continue;
             const location = robot?.variables?.find((variable) => variable.name === series.name);
             const address = location ? location.address + series.index : -1;
-            if (address >= 0 && address < message.values.length) this.push(series, message.time, message.values[address]);
+            if (address >= 0 && address < message.values.length)
+                this.push(series, message.time, message.values[address]);
         }
     }
 
@@ -188,7 +252,12 @@ export class PlotPanel extends Emitter {
             if (entry.kind !== "event") continue;
             const name = this.model.eventName(entry);
             for (const series of this.series)
-                if (series.kind === "event" && series.robot === entry.source && series.name === name && series.index < (entry.args?.length ?? 0))
+                if (
+                    series.kind === "event" &&
+                    series.robot === entry.source &&
+                    series.name === name &&
+                    series.index < (entry.args?.length ?? 0)
+                )
                     this.push(series, entry.time, entry.args[series.index]);
         }
     }
@@ -196,7 +265,8 @@ export class PlotPanel extends Emitter {
     setWindow(seconds) {
         this.window = seconds;
         this.zoomed = false;
-        for (const element of this.windowButtons) element.setAttribute("aria-pressed", String(Number(element.dataset.seconds) === seconds));
+        for (const element of this.windowButtons)
+            element.setAttribute("aria-pressed", String(Number(element.dataset.seconds) === seconds));
         this.redraw();
     }
 
@@ -217,8 +287,16 @@ export class PlotPanel extends Emitter {
                     { class: "series-chip", attrs: { role: "listitem" }, dataset: { key: series.key } },
                     h("span", { class: "series-swatch", style: { background: series.color } }),
                     h("span", { text: this.label(series) }),
-                    (series.valueElement = h("span", { class: "series-value", title: "the value under the cursor, else the latest" })),
-                    button({ icon: icons.close, label: `Remove ${this.label(series)} from the plot`, className: "icon-only small", onClick: () => this.remove(series.key) }),
+                    (series.valueElement = h("span", {
+                        class: "series-value",
+                        title: "the value under the cursor, else the latest",
+                    })),
+                    button({
+                        icon: icons.close,
+                        label: `Remove ${this.label(series)} from the plot`,
+                        className: "icon-only small",
+                        onClick: () => this.remove(series.key),
+                    }),
                 ),
             ),
         );
@@ -236,12 +314,25 @@ export class PlotPanel extends Emitter {
         const style = getComputedStyle(this.element);
         const axisColor = style.getPropertyValue("--text-muted").trim() || "#6e7781";
         const gridColor = style.getPropertyValue("--grid").trim() || "rgba(128,128,128,0.15)";
-        const axis = { stroke: axisColor, grid: { stroke: gridColor, width: 1 }, ticks: { stroke: gridColor, width: 1 } };
+        const axis = {
+            stroke: axisColor,
+            grid: { stroke: gridColor, width: 1 },
+            ticks: { stroke: gridColor, width: 1 },
+        };
         const options = {
             width,
             height,
             scales: { x: { time: true } },
-            series: [{}, ...this.series.map((series) => ({ label: this.label(series), stroke: series.color, width: 1.5, spanGaps: true, points: { show: false } }))],
+            series: [
+                {},
+                ...this.series.map((series) => ({
+                    label: this.label(series),
+                    stroke: series.color,
+                    width: 1.5,
+                    spanGaps: true,
+                    points: { show: false },
+                })),
+            ],
             axes: [axis, axis],
             // The chips above are the legend; they show the values.
             legend: { show: false },
@@ -259,6 +350,7 @@ export class PlotPanel extends Emitter {
         this.plot = new uPlot(options, this.alignedData(), this.chart);
     }
 
+    /** @returns {import("uplot").AlignedData} */
     alignedData() {
         const now = Date.now() / 1000;
         const since = this.window > 0 ? now - this.window : -Infinity;
@@ -268,7 +360,7 @@ export class PlotPanel extends Emitter {
             return [series.times.slice(first), series.values.slice(first)];
         });
         if (tables.every(([times]) => times.length === 0)) return [[], ...this.series.map(() => [])];
-        return uPlot.join(tables);
+        return /** @type {import("uplot").AlignedData} */ (uPlot.join(tables));
     }
 
     // The values at data index `index` (under the cursor), or the latest.
@@ -316,8 +408,13 @@ export class PlotPanel extends Emitter {
             return;
         }
         const data = uPlot.join(tables);
+        /** @type {(string | number)[][]} */
         const rows = [["time", ...this.series.map((series) => this.label(series))]];
-        for (let i = 0; i < data[0].length; i++) rows.push([new Date(data[0][i] * 1000).toISOString(), ...this.series.map((_, column) => data[column + 1][i] ?? "")]);
+        for (let i = 0; i < data[0].length; i++)
+            rows.push([
+                new Date(data[0][i] * 1000).toISOString(),
+                ...this.series.map((_, column) => data[column + 1][i] ?? ""),
+            ]);
         download(stampedFileName("aseba-plot", "csv"), csv(rows), "text/csv");
     }
 }

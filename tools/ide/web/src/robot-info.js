@@ -35,7 +35,9 @@ export class RobotInfoPanel {
 
     setRobot(robot) {
         const description = robot?.description ?? null;
-        const key = description ? `${robot.robot}|${description.name}|${description.natives.length}|${description.localEvents.length}` : "";
+        const key = description
+            ? `${robot.robot}|${description.name}|${description.natives.length}|${description.localEvents.length}`
+            : "";
         if (key === this.key) return;
         this.key = key;
         this.description = description;
@@ -44,19 +46,45 @@ export class RobotInfoPanel {
 
     render() {
         if (!this.description) {
-            setChildren(this.list, h("div", { class: "panel-note", text: "Known once the robot has described itself." }));
+            setChildren(
+                this.list,
+                h("div", { class: "panel-note", text: "Known once the robot has described itself." }),
+            );
             return;
         }
         const filter = this.filter.value.trim().toLowerCase();
         const entries =
             this.kind === "natives"
-                ? this.description.natives.map((native) => ({ name: native.name, title: nativeSignature(native), text: native.description }))
-                : this.description.localEvents.map((event) => ({ name: event.name, title: event.name, text: event.description }));
-        const shown = entries.filter((entry) => !filter || entry.name.toLowerCase().includes(filter) || entry.text.toLowerCase().includes(filter));
+                ? this.description.natives.map((native) => ({
+                      name: native.name,
+                      title: nativeSignature(native),
+                      text: native.description,
+                  }))
+                : this.description.localEvents.map((event) => ({
+                      name: event.name,
+                      title: event.name,
+                      text: event.description,
+                  }));
+        const shown = entries.filter(
+            (entry) =>
+                !filter || entry.name.toLowerCase().includes(filter) || entry.text.toLowerCase().includes(filter),
+        );
         setChildren(
             this.list,
-            shown.length === 0 ? h("div", { class: "panel-note", text: entries.length ? "Nothing matches." : this.kind === "natives" ? "No native functions." : "No local events." }) : null,
-            shown.map((entry) => [h("dt", { class: "info-name", text: entry.title }), h("dd", { class: "info-text", text: entry.text || "(no description)" })]),
+            shown.length === 0
+                ? h("div", {
+                      class: "panel-note",
+                      text: entries.length
+                          ? "Nothing matches."
+                          : this.kind === "natives"
+                            ? "No native functions."
+                            : "No local events.",
+                  })
+                : null,
+            shown.map((entry) => [
+                h("dt", { class: "info-name", text: entry.title }),
+                h("dd", { class: "info-text", text: entry.text || "(no description)" }),
+            ]),
         );
     }
 }

@@ -13,14 +13,24 @@ import { VariablesPanel } from "./variables-panel.js";
 import { RobotInfoPanel } from "./robot-info.js";
 
 const ROBOT_ACTIONS = [
-    { action: "load", icon: icons.load, text: "Load", label: "Load: compile this script and load it into the robot, then run" },
+    {
+        action: "load",
+        icon: icons.load,
+        text: "Load",
+        label: "Load: compile this script and load it into the robot, then run",
+    },
     { action: "run", icon: icons.run, text: "Run", label: "Run" },
     { action: "pause", icon: icons.pause, text: "Pause", label: "Pause" },
     { action: "step", icon: icons.step, text: "Step", label: "Step: run to the next line" },
     { action: "stop", icon: icons.stop, text: "Stop", label: "Stop" },
     { action: "reset", icon: icons.reset, text: "Reset", label: "Reset: restart the program from its start" },
     { separator: true },
-    { action: "store", icon: icons.store, text: "Store", label: "Store in flash: the robot keeps this program after a reboot" },
+    {
+        action: "store",
+        icon: icons.store,
+        text: "Store",
+        label: "Store in flash: the robot keeps this program after a reboot",
+    },
     { action: "reboot", icon: icons.reboot, text: "Reboot", label: "Reboot the robot" },
     { separator: true },
     { action: "binary", icon: icons.binary, text: ".abo", label: "Save the binary code (.abo file)" },
@@ -33,7 +43,11 @@ function meter(label, used, total) {
     return h(
         "span",
         { class: `meter meter-${level}`, title: `${label}: ${used} of ${total} words used` },
-        h("span", { class: "meter-bar" }, h("span", { class: "meter-fill", style: { width: `${(ratio * 100).toFixed(1)}%` } })),
+        h(
+            "span",
+            { class: "meter-bar" },
+            h("span", { class: "meter-fill", style: { width: `${(ratio * 100).toFixed(1)}%` } }),
+        ),
     );
 }
 
@@ -45,18 +59,38 @@ export class RobotPanel {
         this.session = null;
         this.robotName = null;
 
-        this.stateBadge = h("span", { class: "state-badge", attrs: { role: "status" }, dataset: { testid: "robot-state" } });
+        this.stateBadge = h("span", {
+            class: "state-badge",
+            attrs: { role: "status" },
+            dataset: { testid: "robot-state" },
+        });
         this.title = h("span", { class: "robot-title" });
         this.actionButtons = {};
         const toolbarItems = ROBOT_ACTIONS.map((entry) => {
             if (entry.separator) return h("span", { class: "toolbar-separator" });
-            const element = button({ icon: entry.icon, text: entry.text, label: entry.label, className: `robot-${entry.action}`, onClick: () => this.act(entry.action) });
+            const element = button({
+                icon: entry.icon,
+                text: entry.text,
+                label: entry.label,
+                className: `robot-${entry.action}`,
+                onClick: () => this.act(entry.action),
+            });
             this.actionButtons[entry.action] = element;
             return element;
         });
         const editorTools = [
-            button({ icon: icons.find, label: "Find and replace (Ctrl+F)", className: "icon-only", onClick: () => this.withView(openSearchPanel) }),
-            button({ icon: icons.gotoLine, label: "Go to line (Ctrl+Alt+G)", className: "icon-only", onClick: () => this.withView(gotoLine) }),
+            button({
+                icon: icons.find,
+                label: "Find and replace (Ctrl+F)",
+                className: "icon-only",
+                onClick: () => this.withView(openSearchPanel),
+            }),
+            button({
+                icon: icons.gotoLine,
+                label: "Go to line (Ctrl+Alt+G)",
+                className: "icon-only",
+                onClick: () => this.withView(gotoLine),
+            }),
         ];
         this.toolbar = h(
             "div",
@@ -68,31 +102,76 @@ export class RobotPanel {
         );
 
         this.editorHost = h("div", { class: "editor-host" });
-        this.compileStatus = h("div", { class: "compile-status", attrs: { role: "status", "aria-live": "polite" }, dataset: { testid: "compile-status" } });
+        this.compileStatus = h("div", {
+            class: "compile-status",
+            attrs: { role: "status", "aria-live": "polite" },
+            dataset: { testid: "compile-status" },
+        });
         this.programStatus = h("div", { class: "program-status" });
         this.runtimeStatus = h("div", { class: "runtime-status", attrs: { role: "alert" } });
-        const statusBar = h("div", { class: "editor-status" }, this.compileStatus, this.runtimeStatus, this.programStatus);
+        const statusBar = h(
+            "div",
+            { class: "editor-status" },
+            this.compileStatus,
+            this.runtimeStatus,
+            this.programStatus,
+        );
 
         const sideTabs = h("div", { class: "side-tabs", attrs: { role: "tablist", "aria-label": "Robot details" } });
         const sideBody = h("div", { class: "side-body" });
-        this.variables = new VariablesPanel(sideBody, { onSet: (robot, name, index, values) => commands.setVariable(robot, name, index, values) });
+        this.variables = new VariablesPanel(sideBody, {
+            onSet: (robot, name, index, values) => commands.setVariable(robot, name, index, values),
+        });
         this.events = new RobotInfoPanel(sideBody, "events");
         this.natives = new RobotInfoPanel(sideBody, "natives");
-        this.sidePanes = { variables: this.variables.element, events: this.events.element, natives: this.natives.element };
-        this.sideTabButtons = Object.entries({ variables: ["Variables", "Variables"], events: ["Events", "Local events"], natives: ["Functions", "Native functions"] }).map(([key, [text, label]]) =>
-            h("button", { type: "button", class: "side-tab", text, label, attrs: { role: "tab" }, dataset: { pane: key }, onClick: () => this.showSide(key) }),
+        this.sidePanes = {
+            variables: this.variables.element,
+            events: this.events.element,
+            natives: this.natives.element,
+        };
+        this.sideTabButtons = Object.entries({
+            variables: ["Variables", "Variables"],
+            events: ["Events", "Local events"],
+            natives: ["Functions", "Native functions"],
+        }).map(([key, [text, label]]) =>
+            h("button", {
+                type: "button",
+                class: "side-tab",
+                text,
+                label,
+                attrs: { role: "tab" },
+                dataset: { pane: key },
+                onClick: () => this.showSide(key),
+            }),
         );
         sideTabs.append(...this.sideTabButtons);
         this.showSide("variables");
 
-        this.placeholder = h("div", { class: "robot-placeholder" }, h("h2", { text: "No robot yet" }), h("p", { text: "Robots appear here as they join the Aseba network; each gets a tab with its script, its variables and its debugger." }));
+        this.placeholder = h(
+            "div",
+            { class: "robot-placeholder" },
+            h("h2", { text: "No robot yet" }),
+            h("p", {
+                text: "Robots appear here as they join the Aseba network; each gets a tab with its script, its variables and its debugger.",
+            }),
+        );
         this.content = h(
             "div",
             { class: "robot-content" },
             this.toolbar,
-            h("div", { class: "robot-body" }, h("div", { class: "editor-column" }, this.editorHost, statusBar), h("aside", { class: "side-panel" }, sideTabs, sideBody)),
+            h(
+                "div",
+                { class: "robot-body" },
+                h("div", { class: "editor-column" }, this.editorHost, statusBar),
+                h("aside", { class: "side-panel" }, sideTabs, sideBody),
+            ),
         );
-        this.element = h("section", { class: "robot-panel", attrs: { role: "tabpanel" } }, this.placeholder, this.content);
+        this.element = h(
+            "section",
+            { class: "robot-panel", attrs: { role: "tabpanel" } },
+            this.placeholder,
+            this.content,
+        );
         container.append(this.element);
 
         this.view = new EditorView({ parent: this.editorHost });
@@ -163,7 +242,8 @@ export class RobotPanel {
         this.stateBadge.textContent = STATE_TEXT[state] ?? state;
         this.stateBadge.title = robot.line > 0 && state !== "running" ? `at line ${robot.line}` : "";
         const ready = robot.present && robot.described && robot.compatible;
-        for (const [action, element] of Object.entries(this.actionButtons)) element.disabled = !ready && action !== "copy";
+        for (const [action, element] of Object.entries(this.actionButtons))
+            element.disabled = !ready && action !== "copy";
         this.element.classList.toggle("offline", !robot.present);
         this.variables.setRobot(robot);
         this.events.setRobot(robot);
@@ -190,11 +270,22 @@ export class RobotPanel {
             const place = status.error?.line > 0 ? status.error : null;
             children.push(
                 place
-                    ? h("button", { type: "button", class: "status-text error-text go-to-error", text: status.text, title: "Go to the error", onClick: () => this.goTo(place) })
+                    ? h("button", {
+                          type: "button",
+                          class: "status-text error-text go-to-error",
+                          text: status.text,
+                          title: "Go to the error",
+                          onClick: () => this.goTo(place),
+                      })
                     : h("span", { class: "status-text error-text", text: status.text }),
             );
         } else if (robot && !robot.present) {
-            children.push(h("span", { class: "status-text muted", text: "The robot is offline: your text is kept, and compiled when it comes back." }));
+            children.push(
+                h("span", {
+                    class: "status-text muted",
+                    text: "The robot is offline: your text is kept, and compiled when it comes back.",
+                }),
+            );
         } else {
             children.push(h("span", { class: "status-text muted", text: "Compiling…" }));
         }
@@ -207,8 +298,15 @@ export class RobotPanel {
             setChildren(
                 this.runtimeStatus,
                 h("span", { class: "status-icon error", text: "!", attrs: { "aria-hidden": "true" } }),
-                h("span", { text: `Run-time error${error.line > 0 ? ` at line ${error.line}` : ""}: ${error.message}` }),
-                h("button", { type: "button", class: "link-button", text: "Dismiss", onClick: () => session.setRuntimeError(null) }),
+                h("span", {
+                    text: `Run-time error${error.line > 0 ? ` at line ${error.line}` : ""}: ${error.message}`,
+                }),
+                h("button", {
+                    type: "button",
+                    class: "link-button",
+                    text: "Dismiss",
+                    onClick: () => session.setRuntimeError(null),
+                }),
             );
         }
 
@@ -223,7 +321,10 @@ export class RobotPanel {
     // Puts the cursor on the token at {line, column} and shows it.
     goTo({ line, column }) {
         const { from, to } = tokenRange(this.view.state.doc, line, column);
-        this.view.dispatch({ selection: { anchor: from, head: to }, effects: EditorView.scrollIntoView(from, { y: "center" }) });
+        this.view.dispatch({
+            selection: { anchor: from, head: to },
+            effects: EditorView.scrollIntoView(from, { y: "center" }),
+        });
         this.view.focus();
     }
 
@@ -234,7 +335,10 @@ export class RobotPanel {
         return {
             variables: (robot?.variables ?? []).map((variable) => variable.name),
             natives: (description?.natives ?? []).map((native) => ({ name: native.name, info: native.description })),
-            events: [...(description?.localEvents ?? []).map((event) => event.name), ...definitions.events.map((event) => event.name)],
+            events: [
+                ...(description?.localEvents ?? []).map((event) => event.name),
+                ...definitions.events.map((event) => event.name),
+            ],
             constants: definitions.constants.map((constant) => constant.name),
         };
     }

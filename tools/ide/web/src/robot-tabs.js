@@ -38,7 +38,13 @@ export class RobotTabs {
             if (!tab) {
                 tab = h(
                     "button",
-                    { type: "button", class: "robot-tab", attrs: { role: "tab" }, dataset: { robot: name }, onClick: () => this.onSelect(name) },
+                    {
+                        type: "button",
+                        class: "robot-tab",
+                        attrs: { role: "tab" },
+                        dataset: { robot: name },
+                        onClick: () => this.onSelect(name),
+                    },
                     h("span", { class: "dot" }),
                     h("span", { class: "tab-label" }),
                     h("span", { class: "tab-error", text: "!", title: "The script does not compile" }),

@@ -7,7 +7,16 @@
 // have nothing unsent.
 
 import { Emitter } from "./emitter.js";
-import { createState, compileDiagnostics, breakpointLines, breakpointsAt, breakpointStatus, executionLine, runtimeError, fromServer } from "./editor.js";
+import {
+    createState,
+    compileDiagnostics,
+    breakpointLines,
+    breakpointsAt,
+    breakpointStatus,
+    executionLine,
+    runtimeError,
+    fromServer,
+} from "./editor.js";
 import { loadScript, saveScript } from "./storage.js";
 
 // The server refuses longer scripts (docs/ide-protocol.md); the page does
@@ -102,7 +111,10 @@ export class RobotSession {
         this.syncedText = source;
         this.compiledText = null;
         if (source !== this.text())
-            this.dispatch({ changes: { from: 0, to: this.state.doc.length, insert: source }, annotations: fromServer.of(true) });
+            this.dispatch({
+                changes: { from: 0, to: this.state.doc.length, insert: source },
+                annotations: fromServer.of(true),
+            });
         this.persist();
         this.pump();
     }
@@ -182,7 +194,10 @@ export class RobotSession {
         return {
             kind: "ok",
             text: memoryText(result.bytecodeWords, result.bytecodeSize, result.variableWords, result.variablesSize),
-            memory: { bytecode: [result.bytecodeWords, result.bytecodeSize], variables: [result.variableWords, result.variablesSize] },
+            memory: {
+                bytecode: [result.bytecodeWords, result.bytecodeSize],
+                variables: [result.variableWords, result.variablesSize],
+            },
         };
     }
 
@@ -212,7 +227,11 @@ export class RobotSession {
 
     async sendBreakpoints() {
         try {
-            const reply = await this.sessions.connection.request({ type: "breakpoints", robot: this.name, lines: this.breakpointLines() });
+            const reply = await this.sessions.connection.request({
+                type: "breakpoints",
+                robot: this.name,
+                lines: this.breakpointLines(),
+            });
             if (!reply.pending) this.showBreakpointResults(reply.breakpoints);
         } catch (error) {
             this.sessions.emit("error", `Breakpoints of ${this.sessions.model.label(this.name)}: ${error.message}`);

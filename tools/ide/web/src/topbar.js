@@ -5,12 +5,27 @@ import { h, button, setChildren } from "./dom.js";
 import { icons } from "./icons.js";
 
 const GROUP_ACTIONS = [
-    { action: "load", icon: icons.load, text: "Load all", label: "Load all: compile every robot's script and load it, then run" },
+    {
+        action: "load",
+        icon: icons.load,
+        text: "Load all",
+        label: "Load all: compile every robot's script and load it, then run",
+    },
     { action: "run", icon: icons.run, text: "Run all", label: "Run all robots" },
     { action: "pause", icon: icons.pause, text: "Pause all", label: "Pause all robots" },
     { action: "stop", icon: icons.stop, text: "Stop all", label: "Stop all robots" },
-    { action: "reset", icon: icons.reset, text: "Reset all", label: "Reset all robots: restart their programs from the start" },
-    { action: "store", icon: icons.store, text: "Store all", label: "Store all in flash: each robot keeps its program after a reboot" },
+    {
+        action: "reset",
+        icon: icons.reset,
+        text: "Reset all",
+        label: "Reset all robots: restart their programs from the start",
+    },
+    {
+        action: "store",
+        icon: icons.store,
+        text: "Store all",
+        label: "Store all in flash: each robot keeps its program after a reboot",
+    },
     { action: "reboot", icon: icons.reboot, text: "Reboot all", label: "Reboot all robots" },
 ];
 
@@ -18,7 +33,11 @@ export class TopBar {
     constructor(container, { connection, model, commands }) {
         this.connection = connection;
         this.model = model;
-        this.pageState = h("div", { class: "connection-state", attrs: { role: "status" }, dataset: { testid: "page-connection" } });
+        this.pageState = h("div", {
+            class: "connection-state",
+            attrs: { role: "status" },
+            dataset: { testid: "page-connection" },
+        });
         this.linkStates = h("div", { class: "link-states" });
         this.projectName = h("span", { class: "project-name" });
 
@@ -28,21 +47,49 @@ export class TopBar {
                 text: entry.text,
                 label: entry.label,
                 className: `group-${entry.action}`,
-                onClick: () => (entry.action === "load" ? commands.load(commands.readyNames()) : commands.control(commands.readyNames(), entry.action)),
+                onClick: () =>
+                    entry.action === "load"
+                        ? commands.load(commands.readyNames())
+                        : commands.control(commands.readyNames(), entry.action),
             }),
         );
         const element = h(
             "header",
             { class: "topbar" },
-            h("div", { class: "brand" }, h("span", { class: "brand-mark", text: "A" }), h("span", { class: "brand-name", text: "Aseba IDE" }), this.projectName),
+            h(
+                "div",
+                { class: "brand" },
+                h("span", { class: "brand-mark", text: "A" }),
+                h("span", { class: "brand-name", text: "Aseba IDE" }),
+                this.projectName,
+            ),
             h(
                 "div",
                 { class: "toolbar project-toolbar", attrs: { role: "toolbar", "aria-label": "Project" } },
-                button({ icon: icons.open, text: "Open", label: "Open project: an .aesl file from this computer", onClick: () => commands.openProject() }),
-                button({ icon: icons.save, text: "Save", label: "Save the project", onClick: () => commands.saveProject() }),
-                button({ icon: icons.download, text: ".aesl", label: "Download the project as an .aesl file", onClick: () => commands.downloadProject() }),
+                button({
+                    icon: icons.open,
+                    text: "Open",
+                    label: "Open project: an .aesl file from this computer",
+                    onClick: () => commands.openProject(),
+                }),
+                button({
+                    icon: icons.save,
+                    text: "Save",
+                    label: "Save the project",
+                    onClick: () => commands.saveProject(),
+                }),
+                button({
+                    icon: icons.download,
+                    text: ".aesl",
+                    label: "Download the project as an .aesl file",
+                    onClick: () => commands.downloadProject(),
+                }),
             ),
-            h("div", { class: "toolbar group-toolbar", attrs: { role: "toolbar", "aria-label": "Whole group" } }, groupButtons),
+            h(
+                "div",
+                { class: "toolbar group-toolbar", attrs: { role: "toolbar", "aria-label": "Whole group" } },
+                groupButtons,
+            ),
             h("div", { class: "topbar-status" }, this.linkStates, this.pageState),
         );
         container.append(element);
@@ -71,12 +118,21 @@ export class TopBar {
         this.pageState.className = `connection-state state-${state}`;
         this.pageState.dataset.state = state;
         this.pageState.title =
-            state === "open" ? "The page is connected to the IDE server" : `The page lost the IDE server (${this.connection.lastClose || "no answer"}); your texts are kept`;
+            state === "open"
+                ? "The page is connected to the IDE server"
+                : `The page lost the IDE server (${this.connection.lastClose || "no answer"}); your texts are kept`;
         setChildren(
             this.pageState,
             h("span", { class: "dot" }),
             h("span", { text: `Server: ${text}` }),
-            state === "waiting" ? h("button", { type: "button", class: "link-button", text: "Retry now", onClick: () => this.connection.retryNow() }) : null,
+            state === "waiting"
+                ? h("button", {
+                      type: "button",
+                      class: "link-button",
+                      text: "Retry now",
+                      onClick: () => this.connection.retryNow(),
+                  })
+                : null,
         );
         // Links are the server's to tell: unknown while it is away.
         if (state !== "open") this.renderLinks();
@@ -91,7 +147,11 @@ export class TopBar {
                     "span",
                     {
                         class: `link-state ${!open ? "link-unknown" : link.up ? "link-up" : "link-down"}`,
-                        title: !open ? `${link.target}: unknown while the server is away` : link.up ? `${link.target}: connected` : `${link.target}: ${link.error || "down"}`,
+                        title: !open
+                            ? `${link.target}: unknown while the server is away`
+                            : link.up
+                              ? `${link.target}: connected`
+                              : `${link.target}: ${link.error || "down"}`,
                         dataset: { target: link.target, up: String(open && link.up) },
                     },
                     h("span", { class: "dot" }),
@@ -106,6 +166,8 @@ export class TopBar {
         const file = this.model.projectFile;
         this.projectName.textContent = file ? file.split(/[\\/]/).pop() : "";
         this.projectName.title = file ? `Project file on the server: ${file}` : "";
-        this.saveButton.title = file ? `Save the project to ${file} on the server` : "Save the project (downloads an .aesl file: the server has no project file)";
+        this.saveButton.title = file
+            ? `Save the project to ${file} on the server`
+            : "Save the project (downloads an .aesl file: the server has no project file)";
     }
 }

@@ -75,8 +75,16 @@ export class VariablesPanel {
         const filter = this.filter.value.trim().toLowerCase();
         const shown = variables.filter((variable) => !filter || variable.name.toLowerCase().includes(filter));
         const groups = [
-            { title: "Program", hint: "the variables the program declares", entries: shown.filter((variable) => variable.user) },
-            { title: "Robot", hint: "sensors, actuators and settings of the robot", entries: shown.filter((variable) => !variable.user) },
+            {
+                title: "Program",
+                hint: "the variables the program declares",
+                entries: shown.filter((variable) => variable.user),
+            },
+            {
+                title: "Robot",
+                hint: "sensors, actuators and settings of the robot",
+                entries: shown.filter((variable) => !variable.user),
+            },
         ];
         setChildren(
             this.list,
@@ -85,7 +93,10 @@ export class VariablesPanel {
                 .map((group) =>
                     h(
                         "section",
-                        { class: "variables-group", attrs: { role: "group", "aria-label": `${group.title} variables` } },
+                        {
+                            class: "variables-group",
+                            attrs: { role: "group", "aria-label": `${group.title} variables` },
+                        },
                         h("h3", { class: "group-title", title: group.hint, text: `${group.title} variables` }),
                         group.entries.map((variable) => this.variableRows(variable)),
                     ),
@@ -117,7 +128,8 @@ export class VariablesPanel {
         if (isOpen) {
             const count = Math.min(variable.size, MAX_ARRAY_ROWS);
             for (let index = 0; index < count; index++) rows.push(this.row(variable, `[${index}]`, index, 1, 1));
-            if (count < variable.size) rows.push(h("div", { class: "variable-row depth-1 more", text: `… ${variable.size - count} more` }));
+            if (count < variable.size)
+                rows.push(h("div", { class: "variable-row depth-1 more", text: `… ${variable.size - count} more` }));
         }
         return rows;
     }
@@ -127,8 +139,14 @@ export class VariablesPanel {
         const value = h("span", {
             class: "variable-value",
             tabIndex: 0,
-            title: count > 1 ? "Click to write values from index 0, separated by commas" : "Click to change; Enter writes it to the robot",
-            attrs: { role: "textbox", "aria-label": `Value of ${variable.name}${count === 1 && variable.size > 1 ? `[${index}]` : ""}` },
+            title:
+                count > 1
+                    ? "Click to write values from index 0, separated by commas"
+                    : "Click to change; Enter writes it to the robot",
+            attrs: {
+                role: "textbox",
+                "aria-label": `Value of ${variable.name}${count === 1 && variable.size > 1 ? `[${index}]` : ""}`,
+            },
             dataset: { variable: variable.name, index: String(index) },
         });
         const cell = { element: value, address: variable.address + index, count, editing: false };
@@ -144,7 +162,15 @@ export class VariablesPanel {
         return h(
             "div",
             { class: `variable-row depth-${depth}`, attrs: { role: "treeitem" }, dataset: { name: variable.name } },
-            h("span", { class: "variable-name" }, toggle ?? h("span", { class: "array-toggle-space" }), h("span", { text: label, title: `${variable.name}: ${variable.size} word${variable.size > 1 ? "s" : ""} at address ${variable.address}` })),
+            h(
+                "span",
+                { class: "variable-name" },
+                toggle ?? h("span", { class: "array-toggle-space" }),
+                h("span", {
+                    text: label,
+                    title: `${variable.name}: ${variable.size} word${variable.size > 1 ? "s" : ""} at address ${variable.address}`,
+                }),
+            ),
             h("span", { class: "variable-size", text: count > 1 ? `[${variable.size}]` : "" }),
             value,
         );
@@ -190,7 +216,9 @@ export class VariablesPanel {
                     return;
                 }
                 if (index + values.length > variable.size) {
-                    input.setCustomValidity(`${variable.name} has ${variable.size} word${variable.size > 1 ? "s" : ""}`);
+                    input.setCustomValidity(
+                        `${variable.name} has ${variable.size} word${variable.size > 1 ? "s" : ""}`,
+                    );
                     input.reportValidity();
                     return;
                 }
