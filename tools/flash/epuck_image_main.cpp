@@ -4,7 +4,6 @@
 // first, it installs the factory image on a robot through the factory Tiny
 // Bootloader (install_command.hpp).
 
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -44,10 +43,8 @@ Bootloader (`epuck-image install --help` tells more).)";
 
 void write_file(const std::string &path, const std::string &text)
 {
-    std::ofstream file(path, std::ios::binary);
-    file << text;
-    if (!file)
-        throw std::runtime_error(path + ": cannot be written");
+    if (std::string error = aseba::command_line::write_whole_file(path, text); !error.empty())
+        throw std::runtime_error(error);
 }
 
 struct Files {
@@ -77,9 +74,8 @@ Files parse_command_line(int argc, char **argv)
     return files;
 }
 
-} // namespace
-
-int main(int argc, char **argv)
+// The program; its output is checked by main.
+int build_or_install(int argc, char **argv)
 {
     if (argc >= 2 && std::string(argv[1]) == "install")
         return aseba::flash::run_install_command(
@@ -119,4 +115,11 @@ int main(int argc, char **argv)
         return aseba::command_line::EXIT_FAILED;
     }
     return aseba::command_line::EXIT_OK;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    return aseba::command_line::finish_standard_output("epuck-image", build_or_install(argc, argv));
 }
