@@ -2,6 +2,7 @@
 
 #include "host_robot.h"
 
+#include "bootloader/boot_application.h"
 #include "bootloader/bytecode_store.h"
 #include "drivers/epuck/epuck_selector.h"
 
@@ -32,13 +33,28 @@ void host_robot_start_application(host_robot *robot)
     epuck_firmware_init(&robot->firmware, &robot->board, &robot->devices, robot->node_id);
 }
 
+// The bootloader's start, after power-on or a reset.
+static void start_bootloader(host_robot *robot)
+{
+    robot->mode = HOST_ROBOT_IN_BOOTLOADER;
+    host_robot_update_node_id(robot);
+    boot_start(&robot->loader, &robot->board, robot->node_id);
+}
+
+void host_robot_power_on(host_robot *robot)
+{
+    uint32_t entry;
+    if (boot_application_valid(&robot->board, &entry))
+        host_robot_start_application(robot);
+    else
+        start_bootloader(robot);
+}
+
 void host_robot_reset(host_robot *robot)
 {
     host_board_reset(&robot->board);
     robot->resets++;
-    robot->mode = HOST_ROBOT_IN_BOOTLOADER;
-    host_robot_update_node_id(robot);
-    boot_start(&robot->loader, &robot->board, robot->node_id);
+    start_bootloader(robot);
 }
 
 bool host_robot_poll(host_robot *robot)
