@@ -9,10 +9,14 @@
 #include <arpa/inet.h>
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 
@@ -165,4 +169,25 @@ TEST(EmulatorPorts, AFloodOfArenaViewersLeavesTheNetworkAndControlPortsReachable
     for (int fd : viewers)
         close(fd);
     EXPECT_TRUE(emulator->running());
+}
+
+// Under a limit of open files too low for all its ports, epuck-emu stops at
+// once and says what it needs, rather than running with ports that could
+// not all accept.
+TEST(EmulatorPorts, TooFewOpenFilesForItsPortsIsSaidAtStart)
+{
+    ScratchFolder scratch;
+    std::vector<uint16_t> ports = free_ports(2);
+    std::string errors = scratch.path() + "/errors";
+    std::string command = "ulimit -n 100 && exec " + program_path("epuck-emu") +
+                          " --robots 2 --duration 1 --quiet --port " + std::to_string(ports[0]) +
+                          " --robot-ports " + std::to_string(ports[1]) + " > /dev/null 2> " +
+                          errors;
+    int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 1);
+    std::ifstream file(errors);
+    std::string said((std::istreambuf_iterator<char>(file)), {});
+    EXPECT_NE(said.find("epuck-emu: the ports need "), std::string::npos) << said;
+    EXPECT_NE(said.find("ulimit -n"), std::string::npos) << said;
 }
