@@ -2,8 +2,9 @@
 
 #include "host_robot.h"
 
-#include "store/bytecode_store.h"
+#include "bootloader/boot_application.h"
 #include "robots/epuck/devices/epuck_selector.h"
+#include "store/bytecode_store.h"
 
 void host_robot_init(host_robot *robot,
                      uint16_t node_id,
@@ -33,13 +34,28 @@ void host_robot_start_application(host_robot *robot)
     firmware_init(&robot->firmware, &robot->board, &robot->devices, robot->node_id);
 }
 
+// The bootloader's start, after power-on or a reset.
+static void start_bootloader(host_robot *robot)
+{
+    robot->mode = HOST_ROBOT_IN_BOOTLOADER;
+    host_robot_update_node_id(robot);
+    boot_start(&robot->loader, &robot->board, robot->node_id);
+}
+
+void host_robot_power_on(host_robot *robot)
+{
+    uint32_t entry;
+    if (boot_application_valid(&robot->board, &entry))
+        host_robot_start_application(robot);
+    else
+        start_bootloader(robot);
+}
+
 void host_robot_reset(host_robot *robot)
 {
     host_board_reset(&robot->board);
     robot->resets++;
-    robot->mode = HOST_ROBOT_IN_BOOTLOADER;
-    host_robot_update_node_id(robot);
-    boot_start(&robot->loader, &robot->board, robot->node_id);
+    start_bootloader(robot);
 }
 
 bool host_robot_poll(host_robot *robot)

@@ -48,9 +48,15 @@ void host_robot_init(host_robot *robot,
                      void (*link_output)(void *context, const uint8_t *bytes, uint16_t count),
                      void *link_context);
 
-// Powers on into the firmware directly, as if the bootloader had found a
-// valid application and waited out its second: what a simulator wants at
-// start, whatever the flash holds.
+// Powers the robot on, as the chip powers on: its bootloader decides. With a
+// valid application in flash, the firmware starts at once (the bootloader's
+// second of waiting for a host is not waited out: a simulator starts its
+// robots together, before any tool is there); without one (an interrupted
+// flashing), the robot stays in its bootloader, waiting for an image.
+void host_robot_power_on(host_robot *robot);
+
+// Starts the firmware, as the bootloader does when it jumps to a valid
+// application.
 void host_robot_start_application(host_robot *robot);
 
 // Works out node_id again as a start would (after the world or the memories

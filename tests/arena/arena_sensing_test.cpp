@@ -223,6 +223,91 @@ TEST(ArenaSensing, CollisionGivesAnAccelerometerShock)
     EXPECT_GT(deepest, 0);
 }
 
+// Each axis's sign against the physics of a contact, from the e-puck's
+// documented axes (hardware §3.3: +X right, +Y backward, Z up): a wall that
+// stops the robot changes its velocity, and the accelerometer feels that
+// change in the robot's frame. (The arena is flat: no tilt; the driver
+// tests tilt the robot in a modelled world.)
+namespace
+{
+
+struct Contact {
+    const char *name;
+    Pose start;
+    int16_t left_speed, right_speed;
+    int axis; // of acc
+    int sign; // of the reading the contact gives
+};
+
+const Contact contacts[] = {
+    // Stopped from the front: the change points backward, +Y.
+    { "driving_into_a_wall_ahead", facing_wall(1), 1000, 1000, 1, +1 },
+    // Stopped from behind: forward, -Y.
+    { "backing_into_a_wall_behind",
+      { arena_side - body_radius - 1, arena_side / 2, pi },
+      -1000,
+      -1000,
+      1,
+      -1 },
+    // Facing +y, the wall at +x is on the robot's right: turning right
+    // into it, it is pushed to its left, -X.
+    { "turning_right_into_a_wall_on_its_right",
+      { arena_side - body_radius - 2, arena_side / 2, pi / 2 },
+      1000,
+      300,
+      0,
+      -1 },
+    // The mirror: turning left into a wall on its left pushes it right, +X.
+    { "turning_left_into_a_wall_on_its_left",
+      { body_radius + 2, arena_side / 2, pi / 2 },
+      300,
+      1000,
+      0,
+      +1 },
+};
+
+void PrintTo(const Contact &contact, std::ostream *out)
+{
+    *out << contact.name;
+}
+
+class AccelerometerAxes : public testing::TestWithParam<Contact>
+{
+};
+
+} // namespace
+
+TEST_P(AccelerometerAxes, FeelTheContactWithItsSign)
+{
+    const Contact &contact = GetParam();
+    ArenaSimulation simulation(empty_arena(), 1, {});
+    simulation.run_for(calibration_seconds);
+    simulation.world().place(0, contact.start);
+    set_wheels(simulation, contact.left_speed, contact.right_speed);
+    int16_t lowest = 0, highest = 0;
+    for (int step = 0; step < 150; step++) {
+        simulation.step();
+        int16_t reading = variables(simulation).acc[contact.axis];
+        lowest = std::min(lowest, reading);
+        highest = std::max(highest, reading);
+        // Upright all along: 1 g up.
+        EXPECT_NEAR(variables(simulation).acc[2], 768, 20) << "step " << step;
+    }
+    int16_t felt = contact.sign > 0 ? highest : lowest;
+    int16_t opposite = contact.sign > 0 ? lowest : highest;
+    // A contact at these speeds is some tenths of g at least (768 counts
+    // per g); nothing of the other sign but noise.
+    EXPECT_GT(contact.sign * felt, 300) << "lowest " << lowest << ", highest " << highest;
+    EXPECT_GT(contact.sign * opposite, -50) << "lowest " << lowest << ", highest " << highest;
+}
+
+INSTANTIATE_TEST_SUITE_P(ArenaSensing,
+                         AccelerometerAxes,
+                         testing::ValuesIn(contacts),
+                         [](const testing::TestParamInfo<Contact> &parameter) {
+                             return std::string(parameter.param.name);
+                         });
+
 TEST(ArenaSensing, ShockAreaKnocksRobotsThatStay)
 {
     // The whole floor is a shock area with a knock every 0.5 s.

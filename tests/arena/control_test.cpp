@@ -193,6 +193,28 @@ TEST(ControlPort, LetsGoOfAClientWhoseLineIsTooLong)
     EXPECT_TRUE(starts_with(other.line(port), "ok commands"));
 }
 
+// A web page can make the browser send a request to any port of this
+// computer, and choose its body (fetch, mode no-cors): the lines of a body
+// turned selectors and pressed remote keys. A client that speaks HTTP is let
+// go at its request line, before any line of its body runs.
+TEST(ControlPort, ARequestOfABrowserRunsNoCommand)
+{
+    ArenaSimulation simulation(three_robots(), 1, {});
+    ControlPort port(
+      0, [&](const std::string &line) { return run_control_command(simulation, line); });
+    for (const char *request_line : { "POST / HTTP/1.1", "GET /?x HTTP/1.0", "PUT /a HTTP/1.1" }) {
+        SCOPED_TRACE(request_line);
+        Client browser(port.port());
+        browser.send(std::string(request_line) +
+                     "\r\nHost: 127.0.0.1\r\nContent-Type: text/plain\r\n\r\nselector 3 4\n");
+        EXPECT_EQ(browser.line(port), "") << "answered, or still connected";
+        EXPECT_EQ(simulation.world().selector(2), 0);
+    }
+    Client tool(port.port());
+    tool.send("selector 3 4\n");
+    EXPECT_EQ(tool.line(port), "ok selector of robot 3 at 4");
+}
+
 TEST(ControlPort, RefusesAPortInUse)
 {
     ControlPort first(0, [](const std::string &) { return std::string("ok"); });

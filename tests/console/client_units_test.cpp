@@ -1,13 +1,16 @@
-// Target strings, variable references and program helpers of the client
-// library, against the syntax of protocol.md §8 and language.md.
+// Target strings, variable references, program helpers and text for
+// terminals of the client library, against the syntax of protocol.md §8 and
+// language.md.
 
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sstream>
 #include <stdlib.h>
 #include <unistd.h>
 
+#include "tools/client/terminal_text.hpp"
 #include "tools/client/transport.hpp"
 #include "tools/client/variables.hpp"
 #include "tools/compiler/target_presets.hpp"
@@ -190,4 +193,60 @@ TEST(Targets, SerialDeviceCarriesFrames)
     EXPECT_EQ(sent, command);
     link.reset();
     close(master);
+}
+
+// Text from the network as a terminal shows it: whole lines keep their line
+// ends and tabs, names inside a line escape them and the backslash too;
+// control characters (C0, DEL, C1 in UTF-8), the marks that reorder a line
+// and bytes that are not UTF-8 (an overlong form, a lone continuation) are
+// escapes; other characters pass.
+struct Shown {
+    const char *text;
+    const char *line;  // terminal_safe
+    const char *named; // escaped_name
+};
+
+const Shown shown_texts[] = {
+    { "e-puck 1", "e-puck 1", "e-puck 1" },
+    { "\x1b[2J\a", "\\x1b[2J\\x07", "\\x1b[2J\\x07" },
+    { "a\tb\nc\\", "a\tb\nc\\", "a\\tb\\nc\\\\" },
+    { "\r\x7f", "\\x0d\\x7f", "\\x0d\\x7f" },
+    { "\xc2\x9b"
+      "31m",
+      "\\u009b31m",
+      "\\u009b31m" },
+    { "abc\xe2\x80\xae"
+      "fed",
+      "abc\\u202efed",
+      "abc\\u202efed" },
+    { "\xc3\xa9t\xc3\xa9 \xe2\x82\xac",
+      "\xc3\xa9t\xc3\xa9 \xe2\x82\xac",
+      "\xc3\xa9t\xc3\xa9 \xe2\x82\xac" },
+    { "\xff\xc0\xaf\x80", "\\xff\\xc0\\xaf\\x80", "\\xff\\xc0\\xaf\\x80" },
+};
+
+TEST(TerminalText, ControlsAndInvalidBytesAreEscaped)
+{
+    for (const Shown &shown : shown_texts) {
+        SCOPED_TRACE(shown.line);
+        EXPECT_EQ(terminal_safe(shown.text), shown.line);
+        EXPECT_EQ(escaped_name(shown.text), shown.named);
+    }
+}
+
+// The filter in front of a stream: what is written through it reaches the
+// stream's buffer escaped, a line at a time and at each flush; a program's
+// own control sequence goes around it.
+TEST(TerminalText, AFilterEscapesWhatAStreamWrites)
+{
+    std::ostringstream output;
+    {
+        TerminalFilter filter(output);
+        output << "node \x1b]0;title\x07";
+        EXPECT_EQ(output.str(), "") << "written before its line ended";
+        output << " ok\n";
+        TerminalFilter::write_control(output, "\x1b[2J");
+        output << "left \x1b[K" << std::flush;
+    }
+    EXPECT_EQ(output.str(), "node \\x1b]0;title\\x07 ok\n\x1b[2Jleft \\x1b[K");
 }

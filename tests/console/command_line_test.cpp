@@ -1,16 +1,20 @@
 // The command lines of every program (asebac, aseba, epuck-emu,
-// epuck-image), run as a user runs them: one style of help and errors, and
-// one set of exit statuses (0 success, 1 the work failed, 2 bad usage or an
-// input file that cannot be read or used). Inputs that once crashed the
-// programs (a deeply nested project) or were blamed on the wrong file (a
-// target description) are among them.
+// epuck-image, aseba-ide, aseba-mqtt), run as a user runs them: one style of
+// help and errors, and one set of exit statuses (0 success, 1 the work
+// failed, 2 bad usage or an input file that cannot be read or used), output
+// that could not be written included. Inputs that once crashed the programs
+// (a deeply nested project), were blamed on the wrong file (a target
+// description) or took minutes to read are among them.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "console_support.hpp"
+#include "tests/bootloader/test_images.hpp"
 
 using namespace console_test;
 
@@ -209,3 +213,123 @@ TEST(CommandLines, ATargetThatIsNoneIsUsageAndAPortInUseIsAFailure)
         EXPECT_TRUE(contains(second.err, "Address already in use")) << second.err;
     }
 }
+
+// Reading was quadratic in the size of the input: an .aesl project of
+// 40,000 nodes took asebac 73 s (each node's line was found by scanning the
+// text before it), a description of 32,767 local events (the most the
+// bytecode allows) half a minute (the JSON parser's callback). Both are read
+// within the usual wait now, and a node deep in the file still has its line.
+TEST(CommandLines, LargeProjectsAndDescriptionsAreReadWithinTheWait)
+{
+    ScratchFolder scratch;
+    constexpr int nodes = 40000;
+    std::string project = "<!DOCTYPE aesl-source>\n<network>\n";
+    for (int i = 1; i < nodes; i++)
+        project += "<node nodeId=\"" + std::to_string(i) + "\" name=\"n\">var x</node>\n";
+    project += "<node nodeId=\"1\" name=\"last\">var x\nx = y\n</node>\n</network>\n";
+    std::string path = scratch.write("large.aesl", project);
+    CommandResult compiled = run_program("asebac", { path, "--node", "last" }, scratch.path());
+    EXPECT_EQ(compiled.exit_code, 1) << compiled.err;
+    // Lines 1 and 2, then the 39,999 others: the last node's second line.
+    EXPECT_TRUE(contains(compiled.err, "large.aesl:" + std::to_string(2 + nodes + 1) + ":"))
+      << compiled.err.substr(0, 300);
+
+    std::string events;
+    for (int i = 0; i < 32767; i++)
+        events += std::string(i == 0 ? "" : ",") + "{\"name\": \"e" + std::to_string(i) + "\"}";
+    std::string target = scratch.write(
+      "large.json",
+      R"({"name": "large", "bytecode_size": 100, "variables_size": 40, "stack_size": 16,
+          "local_events": [)" +
+        events + "]}");
+    std::string script = scratch.write("handler.aseba", "var x\nonevent e32766\nx = 1\n");
+    CommandResult described = run_program("asebac", { "--target", target, script }, scratch.path());
+    EXPECT_EQ(described.exit_code, 0) << described.err;
+}
+
+// A program's output that cannot be written (a full disk, a closed pipe) is
+// the work failing, said on standard error: asebac once exited 0 after
+// writing its bytecode to /dev/full. Each program, for what it writes: its
+// help, and its own output.
+struct FullOutput {
+    const char *program;
+    // "PORT": a free port, "NETWORK": epuck-emu's target, "BOOTLOADER": a
+    // bootloader image, "SCRATCH/NAME": a file of the test's folder.
+    std::vector<std::string> arguments;
+    bool to_standard_output; // else an argument names /dev/full
+};
+
+void PrintTo(const FullOutput &run, std::ostream *out)
+{
+    *out << run.program;
+    for (const std::string &argument : run.arguments)
+        *out << " " << argument;
+    *out << (run.to_standard_output ? " > /dev/full" : "");
+}
+
+class OutputErrors : public testing::TestWithParam<FullOutput>
+{
+};
+
+TEST_P(OutputErrors, AreStatusOneWithAMessage)
+{
+    const FullOutput &run = GetParam();
+    ScratchFolder scratch;
+    std::unique_ptr<Emulator> emulator;
+    std::vector<std::string> arguments;
+    for (const std::string &argument : run.arguments) {
+        if (argument == "NETWORK") {
+            emulator = std::make_unique<Emulator>();
+            arguments.push_back(emulator->target());
+        } else if (argument == "PORT") {
+            arguments.push_back(std::to_string(find_free_port()));
+        } else if (argument.rfind("SCRATCH/", 0) == 0) {
+            arguments.push_back(scratch.path() + argument.substr(7));
+        } else if (argument == "BOOTLOADER") {
+            arguments.push_back(scratch.write(
+              "bootloader.hex",
+              aseba::flash::write_microchip_hex(bootloader_test::bootloader_image())));
+        } else {
+            arguments.push_back(argument);
+        }
+    }
+    CommandResult result = run_program(run.program,
+                                       arguments,
+                                       scratch.path(),
+                                       Milliseconds(20000),
+                                       run.to_standard_output ? "/dev/full" : "");
+    EXPECT_EQ(result.exit_code, 1) << result.err;
+    std::string complaint =
+      run.to_standard_output ? "cannot write to standard output" : "/dev/full: cannot be written";
+    EXPECT_TRUE(contains(result.err, std::string(run.program) + ": ")) << result.err;
+    EXPECT_TRUE(contains(result.err, complaint)) << result.err;
+}
+
+const FullOutput full_outputs[] = {
+    { "asebac", { "--help" }, true },
+    { "asebac", { "examples/paper-annex.aesl", "-o", "/dev/full", "--format", "binary" }, false },
+    { "asebac", { "examples/paper-annex.aesl", "-o", "-" }, true },
+    { "asebac", { "examples/paper-annex.aesl", "--listing" }, true },
+    { "asebac", { "run", "examples/paper-annex.aesl" }, true },
+    { "aseba", { "--help" }, true },
+    { "aseba", { "-t", "NETWORK", "nodes" }, true },
+    { "epuck-emu", { "--help" }, true },
+    { "epuck-emu", { "--port", "PORT", "--duration", "0.2" }, true },
+    { "epuck-image", { "--help" }, true },
+    { "epuck-image",
+      { "tests/bootloader/hex/application.hex", "BOOTLOADER", "/dev/full", "SCRATCH/factory.hex" },
+      false },
+    { "aseba-ide", { "--help" }, true },
+    { "aseba-ide", { "--port", "0", "tcp:127.0.0.1;1" }, true },
+    { "aseba-mqtt", { "--help" }, true },
+};
+
+INSTANTIATE_TEST_SUITE_P(EveryProgram,
+                         OutputErrors,
+                         testing::ValuesIn(full_outputs),
+                         [](const testing::TestParamInfo<FullOutput> &parameter) {
+                             std::string name = std::string(parameter.param.program) + "_" +
+                                                std::to_string(parameter.index);
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
+                         });

@@ -231,21 +231,24 @@ CommandResult run_console(const std::vector<std::string> &arguments,
 CommandResult run_program(const std::string &program,
                           const std::vector<std::string> &arguments,
                           const std::string &state_folder,
-                          Milliseconds limit)
+                          Milliseconds limit,
+                          const std::string &stdout_path)
 {
-    BackgroundConsole running(arguments, state_folder, program);
+    BackgroundConsole running(arguments, state_folder, program, stdout_path);
     return running.finish(limit);
 }
 
 BackgroundConsole::BackgroundConsole(const std::vector<std::string> &arguments,
                                      const std::string &state_folder,
-                                     const std::string &program)
+                                     const std::string &program,
+                                     const std::string &stdout_path)
   : folder_(state_folder)
 {
     static unsigned counter = 0;
     std::string stem =
       state_folder + "/console-" + std::to_string(getpid()) + "-" + std::to_string(counter++);
-    out_path_ = stem + ".out";
+    own_output_ = stdout_path.empty();
+    out_path_ = own_output_ ? stem + ".out" : stdout_path;
     err_path_ = stem + ".err";
     std::vector<std::string> command{ program_path(program) };
     command.insert(command.end(), arguments.begin(), arguments.end());
@@ -267,7 +270,8 @@ CommandResult BackgroundConsole::finish(Milliseconds limit)
     }
     pid_ = -1;
     result.exit_code = exit_code_of(status);
-    result.out = read_whole_file(out_path_);
+    if (own_output_)
+        result.out = read_whole_file(out_path_);
     result.err += read_whole_file(err_path_);
     return result;
 }

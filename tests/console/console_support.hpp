@@ -88,11 +88,13 @@ CommandResult run_console(const std::vector<std::string> &arguments,
                           const std::string &state_folder,
                           Milliseconds limit = Milliseconds(10000));
 
-// Runs `PROGRAM ARGS` (one of program_path's), killing it after `limit`.
+// Runs `PROGRAM ARGS` (one of program_path's), killing it after `limit`;
+// its standard output goes to `stdout_path` when given (then `out` is empty).
 CommandResult run_program(const std::string &program,
                           const std::vector<std::string> &arguments,
                           const std::string &state_folder,
-                          Milliseconds limit = Milliseconds(10000));
+                          Milliseconds limit = Milliseconds(10000),
+                          const std::string &stdout_path = "");
 
 // A running `aseba ARGS` (e.g. monitor), or another program of ours, whose
 // output is collected when it ends.
@@ -101,7 +103,8 @@ class BackgroundConsole
   public:
     BackgroundConsole(const std::vector<std::string> &arguments,
                       const std::string &state_folder,
-                      const std::string &program = "aseba");
+                      const std::string &program = "aseba",
+                      const std::string &stdout_path = "");
     ~BackgroundConsole();
     BackgroundConsole(const BackgroundConsole &) = delete;
     BackgroundConsole &operator=(const BackgroundConsole &) = delete;
@@ -110,6 +113,7 @@ class BackgroundConsole
 
   private:
     pid_t pid_ = -1;
+    bool own_output_ = true; // out_path_ is its file, read at the end
     std::string out_path_;
     std::string err_path_;
     std::string folder_;

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "console_support.hpp"
+#include "tools/client/messages.hpp"
 
 using namespace console_test;
 
@@ -125,6 +126,47 @@ TEST(ConsoleErrors, NoNetworkIsAClearFailure)
     CommandResult nodes = run_console({ "-t", "tcp:127.0.0.1;1", "nodes" }, scratch.path());
     EXPECT_EQ(nodes.exit_code, 1);
     EXPECT_TRUE(contains(nodes.err, "cannot connect")) << nodes.err;
+}
+
+// A network member names its node, variables, events and natives as it
+// likes: a node named as below cleared the screen of whoever listed the
+// nodes, and set the title of their window. What comes from the network
+// reaches the terminal escaped, in listings as in error messages.
+TEST(ConsoleErrors, TextsFromTheNetworkReachTheTerminalEscaped)
+{
+    using namespace aseba::client;
+    const std::string attack = "\x1b[2J\x1b[31mPWNED\x07\x1b]0;title\x07";
+    const std::string shown = "\\x1b[2J\\x1b[31mPWNED\\x07\\x1b]0;title\\x07";
+    const std::string csi = "\xc2\x9b"; // the C1 control CSI, in UTF-8
+    // A node (id 5) that describes itself with these names and never
+    // answers execution commands, so that they also end in an error.
+    auto answer = [&](const Frame &frame) {
+        std::vector<Frame> replies;
+        Message message = decode(frame);
+        if (std::holds_alternative<ListNodes>(message)) {
+            replies.push_back(encode(NodePresent{ 5 }, 5));
+        } else if (std::holds_alternative<GetNodeDescription>(message)) {
+            replies.push_back(encode(Description{ attack, 5, 100, 16, 40, 1, 1, 1 }, 5));
+            replies.push_back(encode(NamedVariableDescription{ { attack + "var", 1 } }, 5));
+            replies.push_back(encode(LocalEventDescription{ { attack, csi + "[2J" } }, 5));
+            replies.push_back(
+              encode(NativeFunctionDescription{ { "f" + attack, attack, { { attack, 1 } } } }, 5));
+        }
+        return replies;
+    };
+    ScratchFolder scratch;
+    for (const std::vector<std::string> &command :
+         { std::vector<std::string>{ "nodes", "--describe" }, { "run" } }) {
+        SCOPED_TRACE(command.front());
+        ScriptedPeer peer(answer);
+        std::vector<std::string> arguments{ "-t", peer.target(), "--timeout", "300" };
+        arguments.insert(arguments.end(), command.begin(), command.end());
+        CommandResult result = run_console(arguments, scratch.path());
+        std::string printed = result.out + result.err;
+        EXPECT_EQ(printed.find_first_of("\x1b\x07"), std::string::npos) << printed;
+        EXPECT_EQ(printed.find(csi), std::string::npos) << printed;
+        EXPECT_TRUE(contains(printed, shown)) << printed;
+    }
 }
 
 TEST_F(Console, NodesListsAndDescribesTheRobot)

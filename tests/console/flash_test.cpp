@@ -180,6 +180,35 @@ TEST_F(Flash, ARobotWaitingInItsBootloaderIsFlashedByItsId)
     expect_flash_holds(scratch_.path(), 2, good);
 }
 
+// A robot whose flash holds an interrupted flashing (its descriptor erased)
+// is in its bootloader from power-on, as the chip's bootloader decides: it
+// answers no node messages, waits for an image, and runs once flashed. (It
+// started its firmware when epuck-emu started, and showed its bootloader
+// only after a reboot.)
+TEST(FlashAtPowerOn, ARobotWithAnInterruptedFlashingStartsInItsBootloader)
+{
+    ScratchFolder scratch;
+    auto board = std::make_unique<hal_board>();
+    host_board_init(board.get(), nullptr, nullptr); // every flash word erased
+    ASSERT_EQ(hal_flash_read(board.get(), BOOT_DESCRIPTOR_ADDRESS), HAL_FLASH_ERASED);
+    ASSERT_TRUE(host_board_save_memory(board.get(), (scratch.path() + "/robot-2.mem").c_str()));
+
+    Emulator emulator(2, { "--memory", scratch.path() });
+    CommandResult nodes = run_console({ "-t", emulator.target(), "nodes" }, scratch.path());
+    EXPECT_EQ(count_lines_with(nodes.out, "\"e-puck\""), 1u) << nodes.out;
+    EXPECT_FALSE(contains(nodes.out, "node 2 ")) << nodes.out;
+
+    std::string image =
+      scratch.write("good.hex", aseba::flash::write_microchip_hex(test_application(0x22)));
+    CommandResult flashed = run_console({ "-t", emulator.target(), "flash", image, "--node", "2" },
+                                        scratch.path(),
+                                        Milliseconds(30000));
+    EXPECT_EQ(flashed.exit_code, 0) << flashed.out << flashed.err;
+    EXPECT_TRUE(contains(flashed.out, "1 of 1 robots flashed")) << flashed.out;
+    nodes = run_console({ "-t", emulator.target(), "nodes" }, scratch.path());
+    EXPECT_EQ(count_lines_with(nodes.out, "\"e-puck\""), 2u) << nodes.out;
+}
+
 // An image the robots' bootloaders would refuse takes no robot out of
 // service: `aseba flash` checks it whole before it reboots any.
 TEST_F(Flash, ImagesTheBootloaderWouldRefuseAreRefusedBeforeAnyRobotIsTouched)

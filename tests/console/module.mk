@@ -10,16 +10,16 @@ TESTS += console_test
 console_test_SOURCES := tests/console/console_test.cpp tests/console/network_test.cpp \
                         tests/console/reference_test.cpp tests/console/flash_test.cpp \
                         tests/console/flasher_test.cpp \
-                        tests/console/robot_ports_test.cpp \
+                        tests/console/robot_ports_test.cpp tests/console/emulator_ports_test.cpp \
                         tests/console/command_line_test.cpp \
-                        tests/console/console_support.cpp
+                        tests/console/console_support.cpp tests/bootloader/test_images.cpp
 console_test_LIBS := aseba_client aseba_flash aseba_host_board aseba_compiler aseba_natives \
                      aseba_node aseba_vm
 console_test_LDLIBS := -lgtest -lgtest_main -pthread
 
 # The test starts these programs of its own build (order-only: they are
 # run, not linked).
-CONSOLE_TEST_PROGRAMS := epuck-emu aseba asebac epuck-image aseba-mqtt
+CONSOLE_TEST_PROGRAMS := epuck-emu aseba asebac epuck-image aseba-mqtt aseba-ide
 $(foreach v,$(VARIANTS),$(eval \
   $(BUILD)/$(v)/tests/console_test: | $(foreach p,$(CONSOLE_TEST_PROGRAMS),$(BUILD)/$(v)/bin/$(p))))
 

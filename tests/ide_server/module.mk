@@ -10,5 +10,6 @@ ide_server_test_LDLIBS := -lasebacommon -lpugixml -lgtest -lgtest_main -pthread
 EXTRA_CFLAGS_tests/ide_server/websocket_client := -std=c++17
 EXTRA_CFLAGS_tests/ide_server/binary_file_test := -isystem /usr/include/aseba
 
-# The test starts epuck-emu of its own build (order-only: run, not linked).
-$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/tests/ide_server_test: | $(BUILD)/$(v)/bin/epuck-emu))
+# The test starts epuck-emu and aseba-ide of its own build (order-only: run,
+# not linked).
+$(foreach v,$(VARIANTS),$(eval $(BUILD)/$(v)/tests/ide_server_test: | $(BUILD)/$(v)/bin/epuck-emu $(BUILD)/$(v)/bin/aseba-ide))

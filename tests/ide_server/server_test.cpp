@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <netinet/in.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <thread>
 #include <unistd.h>
@@ -93,13 +94,14 @@ class Robots
 class Server
 {
   public:
-    explicit Server(const std::string &target, aseba::ide::IdeOptions options = {})
+    explicit Server(const std::string &target,
+                    aseba::ide::IdeOptions options = {},
+                    std::vector<aseba::ide::StaticFile> files = {})
     {
         options.targets = { target };
         options.web.port = 0;
         options.answer_timeout = milliseconds(1000);
-        server_ = std::make_unique<aseba::ide::IdeServer>(
-          io_, options, std::vector<aseba::ide::StaticFile>{});
+        server_ = std::make_unique<aseba::ide::IdeServer>(io_, options, std::move(files));
         thread_ = std::thread([this] { io_.run(); });
     }
     ~Server()
@@ -499,6 +501,300 @@ TEST(IdeServer, APageThatStopsReadingMissesUpdatesAndIsToldWhileOthersAreServed)
     EXPECT_NE(received.find("\"type\":\"hello\""), std::string::npos);
     EXPECT_NE(received.find("\"type\":\"skipped\""), std::string::npos)
       << received.size() << " bytes received, no 'skipped'";
+}
+
+// Nobody listens on port 1 of the loopback: a server without robots.
+const char *const NO_ROBOTS = "tcp:127.0.0.1;1";
+
+// The page of the tests that need one.
+const std::vector<aseba::ide::StaticFile> A_PAGE = {
+    { "/index.html", "text/html", "<p>page</p>" }
+};
+
+// The server's answer to a request written by hand, sent to `host`: its
+// status code (0: none, or no connection) and its head.
+struct HttpAnswer {
+    int status = 0;
+    std::string head;
+};
+
+HttpAnswer ask(uint16_t port, const std::string &request, const char *host = "127.0.0.1")
+{
+    HttpAnswer answer;
+    int fd = socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(port);
+    inet_pton(AF_INET, host, &address.sin_addr);
+    if (connect(fd, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0 ||
+        write(fd, request.data(), request.size()) != ssize_t(request.size())) {
+        close(fd);
+        return answer;
+    }
+    auto deadline = Clock::now() + EXPECT_LIMIT;
+    char buffer[4096];
+    while (answer.head.find("\r\n\r\n") == std::string::npos && Clock::now() < deadline) {
+        pollfd waiting{ fd, POLLIN, 0 };
+        if (poll(&waiting, 1, 100) <= 0)
+            continue;
+        ssize_t count = read(fd, buffer, sizeof buffer);
+        if (count <= 0)
+            break;
+        answer.head.append(buffer, size_t(count));
+    }
+    close(fd);
+    answer.head = answer.head.substr(0, answer.head.find("\r\n\r\n"));
+    if (answer.head.rfind("HTTP/1.1 ", 0) == 0)
+        answer.status = std::stoi(answer.head.substr(9, 3));
+    return answer;
+}
+
+// A request for `resource` naming `host`; a WebSocket's opening when
+// `websocket`; with the Origin and Cookie headers given (when not empty).
+std::string request_for(const std::string &resource,
+                        const std::string &host,
+                        bool websocket,
+                        const std::string &origin = "",
+                        const std::string &cookie = "")
+{
+    std::string request = "GET " + resource + " HTTP/1.1\r\nHost: " + host + "\r\n";
+    if (websocket)
+        request += "Upgrade: websocket\r\nConnection: Upgrade\r\n"
+                   "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n";
+    if (!origin.empty())
+        request += "Origin: " + origin + "\r\n";
+    if (!cookie.empty())
+        request += "Cookie: " + cookie + "\r\n";
+    return request + "\r\n";
+}
+
+// `text` with every "PORT" replaced by `port`.
+std::string with_port(std::string text, uint16_t port)
+{
+    for (size_t at = text.find("PORT"); at != std::string::npos; at = text.find("PORT", at))
+        text.replace(at, 4, std::to_string(port));
+    return text;
+}
+
+// DNS rebinding: a page of evil.example whose name its owner makes resolve
+// to this computer sends its own name as Host and as Origin. The Origin
+// check alone let its WebSocket in, and it stopped a robot. Only the names
+// this server is reached by are served: loopback names, addresses.
+struct HostCase {
+    const char *host;
+    const char *origin; // "": none
+    bool websocket;
+    int status; // 101: the WebSocket opens; 200: the page is served
+};
+
+const HostCase host_cases[] = {
+    { "evil.example:PORT", "http://evil.example:PORT", true, 403 },
+    { "evil.example:PORT", "", true, 403 },
+    { "evil.example:PORT", "", false, 403 },
+    { "EVIL.example.:PORT", "", false, 403 },
+    { "localhost:PORT", "http://localhost:PORT", true, 101 },
+    { "127.0.0.1:PORT", "http://127.0.0.1:PORT", true, 101 },
+    { "[::1]:PORT", "http://[::1]:PORT", true, 101 },
+    { "robots.localhost:PORT", "http://robots.localhost:PORT", true, 101 },
+    { "localhost:PORT", "", false, 200 },
+    { "127.0.0.1:PORT", "http://attacker.example", true, 403 },
+};
+
+TEST(IdeServer, OnlyTheNamesItIsReachedByAreServed)
+{
+    Server server(NO_ROBOTS, {}, A_PAGE);
+    for (const HostCase &host_case : host_cases) {
+        std::string host = with_port(host_case.host, server.port());
+        SCOPED_TRACE(host + (host_case.websocket ? " (WebSocket)" : " (page)"));
+        HttpAnswer answer = ask(server.port(),
+                                request_for(host_case.websocket ? "/ws" : "/",
+                                            host,
+                                            host_case.websocket,
+                                            with_port(host_case.origin, server.port())));
+        EXPECT_EQ(answer.status, host_case.status) << answer.head;
+    }
+}
+
+// Bound beyond the loopback, the server asks for its token (the address
+// aseba-ide prints carries it, then a cookie does): the page and its
+// WebSocket are refused without it.
+struct TokenCase {
+    const char *resource;
+    const char *cookie; // "": none
+    bool websocket;
+    int status;
+};
+
+const TokenCase token_cases[] = {
+    { "/ws", "", true, 403 },
+    { "/ws?token=wrong", "", true, 403 },
+    { "/ws?token=a-token", "", true, 101 },
+    { "/ws", "aseba-ide-token-PORT=a-token", true, 101 },
+    { "/ws", "aseba-ide-token-1=a-token", true, 403 },
+    { "/", "", false, 403 },
+    { "/?token=a-tokeX", "", false, 403 },
+    { "/?token=a-token", "", false, 200 },
+    { "/", "other=1; aseba-ide-token-PORT=a-token", false, 200 },
+};
+
+TEST(IdeServer, WithATokenNothingIsServedWithoutIt)
+{
+    aseba::ide::IdeOptions options;
+    options.web.access_token = "a-token";
+    Server server(NO_ROBOTS, options, A_PAGE);
+    std::string host = "127.0.0.1:" + std::to_string(server.port());
+    for (const TokenCase &token_case : token_cases) {
+        SCOPED_TRACE(std::string(token_case.resource) + " " + token_case.cookie);
+        HttpAnswer answer = ask(server.port(),
+                                request_for(token_case.resource,
+                                            host,
+                                            token_case.websocket,
+                                            "",
+                                            with_port(token_case.cookie, server.port())));
+        EXPECT_EQ(answer.status, token_case.status) << answer.head;
+    }
+    // The page's address sets the cookie that its own requests then carry.
+    HttpAnswer page = ask(server.port(), request_for("/?token=a-token", host, false));
+    EXPECT_TRUE(page.head.find("Set-Cookie: aseba-ide-token-" + std::to_string(server.port()) +
+                               "=a-token;") != std::string::npos)
+      << page.head;
+}
+
+// What a page can make the server keep is bounded: scripts of robots that
+// are or were on the network only (see data/scripts.trace), and all of them
+// within a budget (1,604 scripts of 250 KB for robots that never were took
+// the server to 1.18 GB).
+TEST(IdeServer, TheScriptsItKeepsStayWithinTheirBudget)
+{
+    uint16_t port = console_test::find_free_port();
+    Robots robots(port, 2);
+    aseba::ide::IdeOptions options;
+    options.max_script_bytes = 100 * 1024;
+    Server server("tcp:localhost;" + std::to_string(port), options);
+    ide_test::WebSocketClient client(server.url());
+    Page page(client);
+    await_robots(client, page, 2);
+    struct Step {
+        const char *robot;
+        size_t kilobytes;
+        Json reply; // what the reply must hold
+    };
+    const Step steps[] = {
+        { "0:1", 60, { { "ok", true } } },
+        { "0:2", 60, { { "ok", false }, { "error", "~more than the 102400 the IDE keeps" } } },
+        { "0:1", 30, { { "ok", true } } }, // a script replaced counts once
+        { "0:2", 60, { { "ok", true } } },
+    };
+    uint64_t id = 0;
+    for (const Step &step : steps) {
+        SCOPED_TRACE(std::string(step.robot) + ", " + std::to_string(step.kilobytes) + " KB");
+        client.send(Json{ { "id", ++id },
+                          { "type", "script" },
+                          { "robot", step.robot },
+                          { "source", std::string(step.kilobytes * 1024, 'x') } }
+                      .dump());
+        Json expected = step.reply;
+        expected["type"] = "reply";
+        expected["id"] = id;
+        std::string seen;
+        EXPECT_TRUE(await(page, expected, seen)) << seen;
+    }
+}
+
+// Opening a project of 34,000 nodes (1.9 MB) blocked the server for 21 s,
+// and every page with it: reading was quadratic, and done on the thread that
+// serves the pages. Another page is answered while it opens, and it opens
+// within the usual wait.
+TEST(IdeServer, AnotherPageIsServedWhileALargeProjectOpens)
+{
+    Server server(NO_ROBOTS);
+    ide_test::WebSocketClient opener(server.url());
+    ide_test::WebSocketClient other(server.url());
+    Page opener_page(opener), other_page(other);
+    std::string seen;
+    ASSERT_TRUE(await(opener_page, Json{ { "type", "hello" } }, seen));
+    ASSERT_TRUE(await(other_page, Json{ { "type", "hello" } }, seen));
+
+    std::string project = "<!DOCTYPE aesl-source>\n<network>\n";
+    for (int i = 0; i < 34000; i++)
+        project +=
+          "<node nodeId=\"" + std::to_string(i % 65535) + "\" name=\"e-puck\">var x</node>\n";
+    project += "</network>\n";
+    opener.send(Json{
+      { "id", 1 }, { "type", "open-project" }, { "name", "large.aesl" }, { "content", project } }
+                  .dump());
+    other.send(R"({"id": 2, "type": "watch", "robots": []})");
+    ASSERT_TRUE(await(other_page, Json{ { "type", "reply" }, { "id", 2 }, { "ok", true } }, seen))
+      << seen;
+    EXPECT_TRUE(await(opener_page, Json{ { "type", "reply" }, { "id", 1 }, { "ok", true } }, seen))
+      << seen;
+}
+
+// The server's port holds a bounded number of connections (it had no cap:
+// enough of them exhausted its descriptors). A newcomer beyond the cap is
+// closed at once, until the connection silent the longest has been so for
+// the grace: then it gives way.
+TEST(IdeServer, ItsPortHoldsABoundedNumberOfConnectionsAndTheSilentGiveWay)
+{
+    aseba::ide::IdeOptions options;
+    options.web.connections = { 3, std::chrono::milliseconds(2000) };
+    Server server(NO_ROBOTS, options);
+    std::vector<std::unique_ptr<ide_test::WebSocketClient>> pages;
+    for (int i = 0; i < 3; i++)
+        pages.push_back(std::make_unique<ide_test::WebSocketClient>(server.url()));
+    auto opened_at = Clock::now();
+    EXPECT_THROW(ide_test::WebSocketClient late(server.url()), std::runtime_error);
+    std::this_thread::sleep_until(opened_at + milliseconds(2200));
+    ide_test::WebSocketClient newcomer(server.url());
+    std::string seen;
+    EXPECT_TRUE(await(newcomer, Json{ { "type", "hello" } }, seen));
+    auto deadline = Clock::now() + EXPECT_LIMIT;
+    while (!pages[0]->closed() && Clock::now() < deadline)
+        std::this_thread::sleep_for(milliseconds(20));
+    EXPECT_TRUE(pages[0]->closed()) << "the page silent the longest was not closed";
+    EXPECT_FALSE(pages[1]->closed());
+    EXPECT_FALSE(pages[2]->closed());
+}
+
+// aseba-ide itself: by default on the loopback only, where its address has
+// no token; bound beyond, the address it prints carries one, without which
+// its WebSocket is refused.
+TEST(AsebaIde, BoundBeyondTheLoopbackItServesOnlyThoseGivenItsAddress)
+{
+    for (bool beyond : { false, true }) {
+        SCOPED_TRACE(beyond ? "--bind 0.0.0.0" : "default");
+        console_test::ScratchFolder scratch;
+        std::string log = scratch.path() + "/aseba-ide.log";
+        std::vector<std::string> command{
+            console_test::program_path("aseba-ide"), "--port", "0", NO_ROBOTS
+        };
+        if (beyond)
+            command.insert(command.end(), { "--bind", "0.0.0.0" });
+        console_test::ReferenceProgram ide(command, {}, log);
+        std::string line;
+        auto deadline = Clock::now() + EXPECT_LIMIT;
+        while (line.find(" (robots on") == std::string::npos && Clock::now() < deadline) {
+            std::this_thread::sleep_for(milliseconds(50));
+            std::ifstream file(log);
+            std::getline(file, line);
+        }
+        size_t open = line.find("open http://");
+        ASSERT_NE(open, std::string::npos) << line;
+        size_t colon = line.find(':', open + 12);
+        uint16_t port = uint16_t(std::stoi(line.substr(colon + 1)));
+        std::string host = "127.0.0.1:" + std::to_string(port);
+        size_t token_at = line.find("?token=");
+        EXPECT_EQ(token_at != std::string::npos, beyond) << line;
+        EXPECT_EQ(ask(port, request_for("/ws", host, true)).status, beyond ? 403 : 101);
+        // 127.0.0.2 is this computer, but not the loopback address listened
+        // on: as another computer, it is not served by default.
+        EXPECT_EQ(ask(port, request_for("/ws", host, true), "127.0.0.2").status != 0, beyond);
+        if (beyond) {
+            std::string token = line.substr(token_at + 7, line.find(' ', token_at) - token_at - 7);
+            EXPECT_EQ(token.size(), 32u) << line;
+            EXPECT_EQ(ask(port, request_for("/ws?token=" + token, host, true)).status, 101);
+        }
+    }
 }
 
 } // namespace

@@ -238,17 +238,17 @@ void write_bytecode(const Options &options, const std::vector<uint16_t> &bytecod
         data += "\n};\n";
     }
     if (options.output == "-") {
-        std::cout << data;
+        std::cout << data; // checked as the program ends
         return;
     }
-    std::ofstream file(options.output, std::ios::binary);
-    if (!file || !(file << data))
-        usage_error("cannot write " + options.output);
+    if (std::string error = command_line::write_whole_file(options.output, data); !error.empty()) {
+        std::cerr << "asebac: " << error << "\n";
+        std::exit(command_line::EXIT_FAILED);
+    }
 }
 
-} // namespace
-
-int main(int argc, char **argv)
+// The program; its output is checked by main.
+int compile_or_run(int argc, char **argv)
 {
     Options options = parse_options(argc, argv);
     TargetDescription target = load_target(options.target);
@@ -324,4 +324,11 @@ int main(int argc, char **argv)
                   << target.bytecode_size << " words of bytecode, " << result.allocated_variables
                   << " of " << target.variables_size << " words of variables\n";
     return 0;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    return aseba::command_line::finish_standard_output("asebac", compile_or_run(argc, argv));
 }

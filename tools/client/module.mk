@@ -13,7 +13,8 @@ aseba_client_SOURCES := \
     tools/client/network.cpp \
     tools/client/network_links.cpp \
     tools/client/flasher.cpp \
-    tools/client/message_text.cpp
+    tools/client/message_text.cpp \
+    tools/client/terminal_text.cpp
 # Links over standalone asio (Debian libasio-dev, header only), kept out of
 # the library's public headers; its resolver runs in a thread of its own.
 aseba_client_LDLIBS := -pthread

@@ -1,19 +1,23 @@
 // The command lines of every program of the project (asebac, aseba,
-// epuck-emu, epuck-image) over CLI11, in one style: help that starts with
-// hand-written usage lines, then what the program or command does, then the
-// options CLI11 knows (so the list cannot drift from the parser), and one
-// set of exit statuses.
+// epuck-emu, epuck-image, aseba-ide, aseba-mqtt) over CLI11, in one style:
+// help that starts with hand-written usage lines, then what the program or
+// command does, then the options CLI11 knows (so the list cannot drift from
+// the parser), one set of exit statuses, and output that is checked.
 
 #pragma once
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace aseba::command_line
 {
@@ -95,18 +99,53 @@ inline void print_usage_error(const std::string &program, const std::string &mes
     std::cerr << program << ": " << message << "\n(" << program << " --help for usage)\n";
 }
 
-// Parses `argv`; prints the help and exits 0 when asked, prints the error and
-// exits EXIT_USAGE on bad usage. Returns only when the command line is good.
+// The exit status of a program that ends with `status`, once what it wrote
+// to standard output has reached it: a full disk or a closed pipe is the
+// work failing (EXIT_FAILED unless it failed already), said on standard
+// error as "PROGRAM: cannot write to standard output: REASON".
+inline int finish_standard_output(const std::string &program, int status)
+{
+    // std::cout writes through stdout (synchronised with stdio).
+    std::cout.flush();
+    errno = 0;
+    bool flushed = std::fflush(stdout) == 0;
+    int reason = errno;
+    if (flushed && !std::ferror(stdout) && std::cout.good())
+        return status;
+    std::cerr << program << ": cannot write to standard output"
+              << (reason != 0 ? std::string(": ") + std::strerror(reason) : "") << "\n";
+    return status == EXIT_OK ? EXIT_FAILED : status;
+}
+
+// Writes `content` to the file `path`, replacing it; "" when all of it was
+// written (flushed and closed), else why not.
+inline std::string write_whole_file(const std::string &path, std::string_view content)
+{
+    std::ofstream file(path, std::ios::binary | std::ios::trunc);
+    if (!file)
+        return path + ": cannot be written: " + std::strerror(errno);
+    errno = 0;
+    file.write(content.data(), std::streamsize(content.size()));
+    file.close();
+    if (!file)
+        return path + ": cannot be written" +
+               (errno != 0 ? std::string(": ") + std::strerror(errno) : "");
+    return "";
+}
+
+// Parses `argv`; prints the help and exits 0 when asked (1 when it cannot be
+// written), prints the error and exits EXIT_USAGE on bad usage. Returns only
+// when the command line is good.
 inline void parse_or_exit(CLI::App &app, int argc, char **argv)
 {
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp &) {
         std::cout << app.help();
-        std::exit(EXIT_OK);
+        std::exit(finish_standard_output(app.get_name(), EXIT_OK));
     } catch (const CLI::CallForAllHelp &) {
         std::cout << app.help("", CLI::AppFormatMode::All);
-        std::exit(EXIT_OK);
+        std::exit(finish_standard_output(app.get_name(), EXIT_OK));
     } catch (const CLI::ParseError &error) {
         print_usage_error(app.get_name(), error.what());
         std::exit(EXIT_USAGE);

@@ -32,32 +32,44 @@ struct AeslError : std::runtime_error {
     unsigned line;
 };
 
-// Line (from 1) and column (from 0) of byte `offset` of `text`.
+// Line (from 1) and column (from 0) of a byte of the text.
 struct Position {
     unsigned line = 1;
     unsigned column = 0;
 };
 
-Position position_of(std::string_view text, ptrdiff_t offset)
+// Where each line of a text starts, found once, so that placing every node
+// of a project costs a binary search, not a scan of the text before it.
+class LineStarts
 {
-    Position position;
-    size_t end = std::min(text.size(), size_t(std::max<ptrdiff_t>(offset, 0)));
-    for (size_t i = 0; i < end; ++i) {
-        if (text[i] == '\n') {
-            position.line++;
-            position.column = 0;
-        } else {
-            position.column++;
-        }
+  public:
+    explicit LineStarts(std::string_view text)
+    {
+        starts_.push_back(0);
+        for (size_t i = 0; i < text.size(); ++i)
+            if (text[i] == '\n')
+                starts_.push_back(i + 1);
+        size_ = text.size();
     }
-    return position;
-}
+
+    Position position_of(ptrdiff_t offset) const
+    {
+        size_t at = std::min(size_, size_t(std::max<ptrdiff_t>(offset, 0)));
+        auto line = std::upper_bound(starts_.begin(), starts_.end(), at) - 1;
+        return { unsigned(line - starts_.begin() + 1), unsigned(at - *line) };
+    }
+
+  private:
+    std::vector<size_t> starts_;
+    size_t size_ = 0;
+};
 
 class ProjectReader
 {
   public:
     explicit ProjectReader(std::string_view text)
       : text_(text)
+      , lines_(text)
     {
     }
 
@@ -67,7 +79,7 @@ class ProjectReader
         pugi::xml_parse_result parsed =
           document.load_buffer(text_.data(), text_.size(), PARSE_OPTIONS, pugi::encoding_utf8);
         if (!parsed)
-            throw AeslError(position_of(text_, parsed.offset).line,
+            throw AeslError(lines_.position_of(parsed.offset).line,
                             std::string("not well-formed XML: ") + parsed.description());
         pugi::xml_node root = document.document_element();
         if (!root || std::string_view(root.name()) != "network")
@@ -97,7 +109,7 @@ class ProjectReader
   private:
     unsigned line_of(pugi::xml_node node) const
     {
-        return position_of(text_, node.offset_debug()).line;
+        return lines_.position_of(node.offset_debug()).line;
     }
 
     long number(pugi::xml_node element, const char *key, long low, long high) const
@@ -150,7 +162,7 @@ class ProjectReader
         for (pugi::xml_node child : element.children()) {
             if (child.type() == pugi::node_pcdata || child.type() == pugi::node_cdata) {
                 if (!positioned) {
-                    Position start = position_of(text_, child.offset_debug());
+                    Position start = lines_.position_of(child.offset_debug());
                     result.first_line = start.line;
                     result.first_column = start.column;
                     positioned = true;
@@ -169,6 +181,7 @@ class ProjectReader
     }
 
     std::string_view text_;
+    LineStarts lines_;
 };
 
 // Every element on a line of its own, two blank lines and a comment before

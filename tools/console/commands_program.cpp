@@ -68,22 +68,25 @@ std::string file_argument(const Session &session, const char *command)
 }
 
 // Uploads each program and, unless --paused, runs it; records the loads.
-void load_programs(Session &session,
+// Returns whether every load was recorded.
+bool load_programs(Session &session,
                    const std::vector<NodeKey> &nodes,
                    const std::vector<std::shared_ptr<client::CompiledProgram>> &programs,
                    const std::string &path,
                    bool run)
 {
+    bool recorded = true;
     for (size_t i = 0; i < nodes.size(); i++) {
         const client::CompiledProgram &program = *programs[i];
         session.network().upload(nodes[i], program.result.bytecode);
         session.network().set_program(nodes[i], programs[i]);
-        session.record_load(nodes[i], path);
+        recorded = session.record_load(nodes[i], path) && recorded;
         client::ExecutionState state =
           run ? session.network().run(nodes[i]) : *session.network().node(nodes[i]).execution;
         std::cout << session.label(nodes[i]) << ": loaded " << path << " ("
                   << program.result.bytecode.size() << " words), " << state.name() << "\n";
     }
+    return recorded;
 }
 
 } // namespace
@@ -136,8 +139,8 @@ int command_load(Session &session)
     std::vector<NodeKey> nodes = session.selected_nodes();
     // Compile for everyone first: one bad program loads nothing.
     auto programs = compile_for_nodes(session, nodes, path);
-    load_programs(session, nodes, programs, path, !session.options().paused);
-    return 0;
+    bool recorded = load_programs(session, nodes, programs, path, !session.options().paused);
+    return recorded ? 0 : EXIT_FAILED;
 }
 
 int command_save(Session &session)
@@ -146,9 +149,10 @@ int command_save(Session &session)
     if (arguments.size() > 1)
         throw UsageError("save takes at most one FILE");
     std::vector<NodeKey> nodes = session.selected_nodes();
+    bool recorded = true;
     if (arguments.size() == 1) {
         auto programs = compile_for_nodes(session, nodes, arguments[0]);
-        load_programs(session, nodes, programs, arguments[0], true);
+        recorded = load_programs(session, nodes, programs, arguments[0], true);
     }
     for (NodeKey key : nodes) {
         session.network().write_bytecode(key);
@@ -162,7 +166,7 @@ int command_save(Session &session)
             std::cout << "node " << frame.frame.source << ": " << report->message << "\n";
     });
     session.network().wait_until([] { return false; }, SAVE_REPORT_WAIT);
-    return 0;
+    return recorded ? 0 : EXIT_FAILED;
 }
 
 int command_reboot(Session &session)

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "console.hpp"
+#include "tools/client/terminal_text.hpp"
 #include "tools/client/variables.hpp"
 
 namespace aseba::console
@@ -192,7 +193,7 @@ int command_watch(Session &session)
         for (size_t row = 0; row < nodes.size(); row++)
             add_line(session.label(nodes[row]), [&](size_t column) { return cells[row][column]; });
         if (on_terminal)
-            std::cout << clear_screen;
+            client::TerminalFilter::write_control(std::cout, clear_screen);
         else if (refresh > 0)
             std::cout << "\n";
         std::cout << table << std::flush;

@@ -89,8 +89,9 @@ class Session
     void attach_programs(const std::vector<NodeKey> &nodes);
 
     // Records that `file` (with `declared` events) was loaded on `key`, so
-    // that later commands know its variables, events and lines.
-    void record_load(NodeKey key, const std::string &file);
+    // that later commands know its variables, events and lines; false after
+    // saying on standard error that the record could not be written.
+    bool record_load(NodeKey key, const std::string &file);
 
     // The global events known for `key` (its program's, else --event ones).
     const CommonDefinitions &definitions_for(NodeKey key) const;

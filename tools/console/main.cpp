@@ -8,6 +8,8 @@
 #include <map>
 
 #include "console.hpp"
+#include "tools/client/terminal_text.hpp"
+#include "tools/command_line/command_line.hpp"
 
 namespace aseba::console
 {
@@ -64,7 +66,11 @@ void catch_interrupt()
 
 } // namespace aseba::console
 
-int main(int argc, char **argv)
+namespace
+{
+
+// The program; its output is checked by main.
+int run_command(int argc, char **argv)
 {
     using namespace aseba::console;
     using Command = int (*)(Session &);
@@ -104,4 +110,14 @@ int main(int argc, char **argv)
         std::cerr << "aseba: " << error.what() << "\n";
         return EXIT_FAILED;
     }
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    // Names and messages come from the network: escaped before any
+    // terminal sees them, whichever command prints them.
+    aseba::client::TerminalFilter output(std::cout), errors(std::cerr);
+    return aseba::command_line::finish_standard_output("aseba", run_command(argc, argv));
 }

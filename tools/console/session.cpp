@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "console.hpp"
+#include "tools/client/terminal_text.hpp"
+#include "tools/command_line/command_line.hpp"
 
 namespace aseba::console
 {
@@ -145,11 +147,11 @@ void Session::attach_programs(const std::vector<NodeKey> &nodes)
     }
 }
 
-void Session::record_load(NodeKey key, const std::string &file)
+bool Session::record_load(NodeKey key, const std::string &file)
 {
     fs::path path = record_path();
     if (path.empty())
-        return; // nowhere to remember: later commands need --program
+        return true; // nowhere to remember: later commands need --program
     std::string target = network_.target_name(key.target);
     std::vector<LoadRecord> records = read_records();
     std::erase_if(records, [&](const LoadRecord &record) {
@@ -159,10 +161,15 @@ void Session::record_load(NodeKey key, const std::string &file)
       { target, key.id, fs::absolute(file).string(), events_text(options_.declared) });
     std::error_code error;
     fs::create_directories(path.parent_path(), error);
-    std::ofstream out(path, std::ios::trunc);
+    std::string text;
     for (const LoadRecord &record : records)
-        out << record.target << '\t' << record.node_id << '\t' << record.file << '\t'
-            << record.declared_events << '\n';
+        text += record.target + '\t' + std::to_string(record.node_id) + '\t' + record.file + '\t' +
+                record.declared_events + '\n';
+    std::string failure = command_line::write_whole_file(path.string(), text);
+    if (!failure.empty())
+        std::cerr << "aseba: the load is not recorded (later commands need --program): " << failure
+                  << "\n";
+    return failure.empty();
 }
 
 const CommonDefinitions &Session::definitions_for(NodeKey key) const
@@ -175,7 +182,7 @@ const CommonDefinitions &Session::definitions_for(NodeKey key) const
 
 std::string Session::label(NodeKey key) const
 {
-    std::string text = network_.node(key).label();
+    std::string text = client::escaped_name(network_.node(key).label());
     if (network_.target_count() > 1)
         text += " (" + network_.target_name(key.target) + ")";
     return text;

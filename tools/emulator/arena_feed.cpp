@@ -89,6 +89,7 @@ std::string arena_geometry_json(const Arena &arena)
 struct ArenaFeed::Implementation {
     struct Viewer {
         tcp::socket socket;
+        connections::Clock::time_point arrived;
         std::deque<std::string> queue; // the front one is being written
         size_t queued_bytes = 0;
         bool closed = false;
@@ -107,20 +108,40 @@ struct ArenaFeed::Implementation {
 
     asio::io_context io;
     tcp::acceptor acceptor{ io };
+    connections::PortLimit limit;
+    bool accepting = false;
     std::string geometry;
     std::list<Viewer> viewers;
 
     void accept()
     {
+        accepting = true;
         acceptor.async_accept([this](const std::error_code &error, tcp::socket socket) {
+            accepting = false;
             if (error)
-                return;
-            socket.set_option(tcp::no_delay(true));
-            Viewer &viewer = viewers.emplace_back(Viewer{ std::move(socket), {}, 0, false, 0, {} });
-            send(viewer, geometry);
-            read(viewer);
+                return; // tried again at the next service()
+            if (make_room()) {
+                std::error_code ignored;
+                socket.set_option(tcp::no_delay(true), ignored);
+                Viewer &viewer = viewers.emplace_back(
+                  Viewer{ std::move(socket), connections::Clock::now(), {}, 0, false, 0, {} });
+                send(viewer, geometry);
+                read(viewer);
+            }
             accept();
         });
+    }
+
+    // Whether a newcomer may watch: the feed has room, or its oldest viewer
+    // has watched for the grace and leaves.
+    bool make_room()
+    {
+        return connections::make_room(
+          viewers,
+          [](const Viewer &member) { return !member.closed; },
+          [](const Viewer &member) { return member.arrived; },
+          [](Viewer &member) { member.close(); },
+          limit);
     }
 
     // Viewers have nothing to say; reading tells when they leave.
@@ -164,10 +185,14 @@ struct ArenaFeed::Implementation {
     }
 };
 
-ArenaFeed::ArenaFeed(const Arena &arena, const std::string &address, uint16_t port)
+ArenaFeed::ArenaFeed(const Arena &arena,
+                     const std::string &address,
+                     uint16_t port,
+                     const connections::PortLimit &limit)
   : implementation_(std::make_unique<Implementation>())
 {
     Implementation &self = *implementation_;
+    self.limit = limit;
     self.geometry = arena_geometry_json(arena);
     std::error_code error;
     tcp::endpoint endpoint(asio::ip::make_address(address, error), port);
@@ -229,6 +254,8 @@ void ArenaFeed::service()
     self.io.restart();
     self.viewers.remove_if(
       [](const Implementation::Viewer &viewer) { return viewer.closed && viewer.pending == 0; });
+    if (!self.accepting)
+        self.accept();
 }
 
 size_t ArenaFeed::viewer_count() const

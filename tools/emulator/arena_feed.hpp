@@ -13,6 +13,7 @@
 
 #include "arena_file.hpp"
 #include "enki_world.hpp"
+#include "tools/connections/port_limit.hpp"
 
 namespace aseba::arena
 {
@@ -31,10 +32,17 @@ class ArenaFeed
   public:
     // How often viewers get the robots, in wall-clock seconds.
     static constexpr double PERIOD_SECONDS = 1.0 / 15;
+    // Viewers at once (tools/connections/port_limit.hpp). Viewers never
+    // speak: when the feed is full, the oldest gives its place once it has
+    // watched for the grace.
+    static constexpr size_t MOST_VIEWERS = 8;
 
     // Listens on `address`:`port` (0: any free port); throws
     // std::runtime_error with the system's reason.
-    ArenaFeed(const Arena &arena, const std::string &address, uint16_t port);
+    ArenaFeed(const Arena &arena,
+              const std::string &address,
+              uint16_t port,
+              const connections::PortLimit &limit = { MOST_VIEWERS, connections::IDLE_GRACE });
     ~ArenaFeed();
     ArenaFeed(const ArenaFeed &) = delete;
     ArenaFeed &operator=(const ArenaFeed &) = delete;

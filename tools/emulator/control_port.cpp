@@ -18,6 +18,20 @@ namespace aseba::arena
 
 using asio::ip::tcp;
 
+namespace
+{
+
+// A web page can make the browser send a request to any port of this
+// computer, with a body of its choosing: its request line ("POST /
+// HTTP/1.1") ends the connection before any line of that body runs.
+bool is_http_request_line(const std::string &line)
+{
+    size_t last_space = line.rfind(' ');
+    return last_space != std::string::npos && line.compare(last_space + 1, 5, "HTTP/") == 0;
+}
+
+} // namespace
+
 struct ControlPort::Implementation {
     struct Client {
         explicit Client(tcp::socket connected)
@@ -28,6 +42,7 @@ struct ControlPort::Implementation {
         tcp::socket socket;
         asio::streambuf input;
         std::deque<std::string> answers; // the front one is being written
+        connections::Clock::time_point heard = connections::Clock::now(); // its last line
         bool closed = false;
         unsigned pending = 0; // operations whose handler has not run: they hold &client
         bool leave_after_answers = false;
@@ -41,18 +56,35 @@ struct ControlPort::Implementation {
     };
 
     Handler handler;
+    connections::PortLimit limit;
     asio::io_context io;
     tcp::acceptor acceptor{ io };
     std::list<Client> clients;
+    bool accepting = false;
 
     void accept()
     {
+        accepting = true;
         acceptor.async_accept([this](const std::error_code &error, tcp::socket socket) {
+            accepting = false;
             if (error)
-                return;
-            read(clients.emplace_back(std::move(socket)));
+                return; // tried again at the next service()
+            if (make_room())
+                read(clients.emplace_back(std::move(socket)));
             accept();
         });
+    }
+
+    // Whether a newcomer may stay: the port has room, or its client silent
+    // the longest has been for the grace and leaves.
+    bool make_room()
+    {
+        return connections::make_room(
+          clients,
+          [](const Client &member) { return !member.closed; },
+          [](const Client &member) { return member.heard; },
+          [](Client &member) { member.close(); },
+          limit);
     }
 
     void read(Client &client)
@@ -75,11 +107,16 @@ struct ControlPort::Implementation {
                   client.close();
                   return;
               }
+              client.heard = connections::Clock::now();
               std::string line;
               std::istream stream(&client.input);
               std::getline(stream, line);
               if (!line.empty() && line.back() == '\r')
                   line.pop_back();
+              if (is_http_request_line(line)) {
+                  client.close();
+                  return;
+              }
               if (line.find_first_not_of(" \t") != std::string::npos)
                   answer(client, handler(line));
               read(client);
@@ -113,11 +150,12 @@ struct ControlPort::Implementation {
     }
 };
 
-ControlPort::ControlPort(uint16_t port, Handler handler)
+ControlPort::ControlPort(uint16_t port, Handler handler, const connections::PortLimit &limit)
   : implementation_(std::make_unique<Implementation>())
 {
     Implementation &self = *implementation_;
     self.handler = std::move(handler);
+    self.limit = limit;
     std::error_code error;
     tcp::endpoint endpoint(asio::ip::address_v4::loopback(), port);
     self.acceptor.open(endpoint.protocol(), error);
@@ -147,6 +185,8 @@ void ControlPort::service()
     self.io.restart();
     self.clients.remove_if(
       [](const Implementation::Client &client) { return client.closed && client.pending == 0; });
+    if (!self.accepting)
+        self.accept();
 }
 
 size_t ControlPort::client_count() const

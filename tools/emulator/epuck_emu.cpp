@@ -56,10 +56,13 @@ reprogram, reboot or flash every robot and speak as any node. --listen
 ADDRESS opens it to other computers, e.g. --listen 0.0.0.0 for every
 interface (docs/threat-model.md).
 
-Each robot starts its firmware at once and runs the program stored in its
-flash (or --load's). REBOOT (Studio, `aseba reboot`, `aseba flash`) resets it
-as on the chip: its Aseba bootloader runs, answers the bootloader messages for
-1 s (longer once a host addresses it), then starts the application if the
+At power-on each robot's bootloader decides, as on the chip: with a valid
+application image in its flash, the firmware starts at once and runs the
+program stored there (or --load's); a robot whose image is not valid (an
+interrupted flashing, kept with --memory) stays in its bootloader, waiting
+for an image. REBOOT (Studio, `aseba reboot`, `aseba flash`) resets it as on
+the chip: its Aseba bootloader runs, answers the bootloader messages for 1 s
+(longer once a host addresses it), then starts the application if the
 flashed image is valid. The PC cannot execute dsPIC code: a valid image runs
 this build's firmware.
 
@@ -75,6 +78,33 @@ std::atomic<bool> stop_requested{ false };
 void request_stop(int)
 {
     stop_requested = true;
+}
+
+// Whether a line printed could not be written (a full disk, a closed pipe).
+// That is said once on standard error; the robots go on serving their tools
+// without the status line, and the run ends with EXIT_FAILED.
+bool output_failed = false;
+
+void flush_output()
+{
+    if (output_failed)
+        return;
+    errno = 0;
+    if (std::fflush(stdout) == 0 && !std::ferror(stdout))
+        return;
+    output_failed = true;
+    std::fprintf(stderr,
+                 "epuck-emu: cannot write to standard output%s%s; no more status lines\n",
+                 errno != 0 ? ": " : "",
+                 errno != 0 ? std::strerror(errno) : "");
+}
+
+// The exit status of a run whose memories were kept (or not) as asked.
+int exit_status(bool memories_failed)
+{
+    flush_output();
+    return memories_failed || output_failed ? aseba::command_line::EXIT_FAILED
+                                            : aseba::command_line::EXIT_OK;
 }
 
 struct Options {
@@ -342,6 +372,29 @@ class MemoryFiles
     bool failed_ = false;
 };
 
+// Makes sure the process may hold the most connections its ports take, so
+// that filling one leaves the others reachable (exits when it cannot).
+void reserve_descriptors(const Options &options, size_t robots)
+{
+    // Standard streams, the sanitizers' and Enki's files, a margin.
+    constexpr size_t other_descriptors = 64;
+    size_t needed = aseba::host::MAX_CLIENTS + 1 + other_descriptors;
+    if (options.robot_ports != 0)
+        needed += robots * (aseba::host::ROBOT_PORT_CLIENTS + 1);
+    if (options.control_port != 0)
+        needed += aseba::arena::ControlPort::most_clients + 1;
+    if (options.arena_feed != 0)
+        needed += aseba::arena::ArenaFeed::MOST_VIEWERS + 1;
+    if (!options.memory_folder.empty())
+        needed += robots;
+    try {
+        aseba::connections::reserve_descriptors(needed);
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "epuck-emu: %s\n", error.what());
+        std::exit(aseba::command_line::EXIT_FAILED);
+    }
+}
+
 // With --robot-ports, opens each robot's own port.
 template<typename BoardAt>
 void listen_robot_ports(const Options &options,
@@ -459,6 +512,7 @@ int run_arena(const Options &options,
     }
     aseba::arena::ArenaSimulation &simulation = *simulation_owner;
     aseba::host::Network &network = simulation.network();
+    reserve_descriptors(options, simulation.robot_count());
     open_port([&] {
         network.listen(options.port, options.listen_address);
         listen_robot_ports(options,
@@ -505,7 +559,7 @@ int run_arena(const Options &options,
     if (control)
         std::printf("epuck-emu: control commands on 127.0.0.1 port %u, one a line (help)\n",
                     unsigned(control->port()));
-    std::fflush(stdout);
+    flush_output();
 
     const bool terminal = isatty(STDOUT_FILENO);
     const double status_period = terminal ? 0.5 : 10; // wall-clock seconds
@@ -540,7 +594,7 @@ int run_arena(const Options &options,
             }
             feed->service();
         }
-        if (!options.quiet && wall >= next_status) {
+        if (!options.quiet && !output_failed && wall >= next_status) {
             next_status = wall + status_period;
             double factor = (simulation.seconds() - last_status_simulated) /
                             std::max(wall - last_status_wall, 1e-9);
@@ -552,7 +606,7 @@ int run_arena(const Options &options,
               head +
               status.line(simulation.seconds(), simulation.robot_count(), network.client_count());
             std::printf(terminal ? "\r%s\033[K" : "%s\n", line.c_str());
-            std::fflush(stdout);
+            flush_output();
         }
     }
     double wall = wall_seconds();
@@ -575,7 +629,7 @@ int run_arena(const Options &options,
         std::printf("epuck-emu: %s\n", line.c_str());
     }
     memories.sync();
-    return memories.failed() ? aseba::command_line::EXIT_FAILED : aseba::command_line::EXIT_OK;
+    return exit_status(memories.failed());
 }
 
 } // namespace
@@ -596,6 +650,7 @@ int main(int argc, char **argv)
 
     std::vector<std::unique_ptr<host_robot>> robots;
     aseba::host::Network network;
+    reserve_descriptors(options, options.robots);
     open_port([&] { network.listen(options.port, options.listen_address); });
     try {
         auto prepare = memory_preparation(options);
@@ -627,7 +682,7 @@ int main(int argc, char **argv)
                 robot_ports_note(options, robots.size()).c_str(),
                 options.load.empty() ? "" : ", running ",
                 options.load.c_str());
-    std::fflush(stdout);
+    flush_output();
 
     // The status line rewrites itself on a terminal, and is logged every 10 s
     // elsewhere.
@@ -653,11 +708,11 @@ int main(int argc, char **argv)
         // Wait for the network only when no robot has work left; the robots'
         // clocks tick in milliseconds, so never wait longer than one.
         network.service(busy ? 0 : 1);
-        if (!options.quiet && seconds >= next_status) {
+        if (!options.quiet && !output_failed && seconds >= next_status) {
             next_status += status_period;
             std::string line = status.line(seconds, robots.size(), network.client_count());
             std::printf(terminal ? "\r%s\033[K" : "%s\n", line.c_str());
-            std::fflush(stdout);
+            flush_output();
         }
     }
     std::printf("%sepuck-emu: stopped after %.1f s, %llu frames on the network\n",
@@ -665,5 +720,5 @@ int main(int argc, char **argv)
                 std::chrono::duration<double>(clock::now() - start).count(),
                 static_cast<unsigned long long>(network.frames_moved()));
     memories.sync();
-    return memories.failed() ? aseba::command_line::EXIT_FAILED : aseba::command_line::EXIT_OK;
+    return exit_status(memories.failed());
 }

@@ -117,6 +117,8 @@ void board_output(void *context, const uint8_t *bytes, uint16_t count)
         board->bus->broadcast_from_board(*board, *frame);
 }
 
+struct Listener;
+
 struct Client {
     explicit Client(asio::io_context &io)
       : socket(io)
@@ -124,7 +126,9 @@ struct Client {
     }
     uint64_t number = 0;
     asio::ip::tcp::socket socket;
-    Board *robot = nullptr; // a client linked to this board alone
+    const Listener *listener = nullptr;   // the port it came by
+    Board *robot = nullptr;               // a client linked to this board alone
+    connections::Clock::time_point heard; // when it last sent something
     FrameReader reader;
     std::array<uint8_t, read_chunk> input{};
     bool reading = false;
@@ -142,6 +146,7 @@ struct Listener {
     }
     asio::ip::tcp::acceptor acceptor;
     Board *robot = nullptr;
+    connections::PortLimit limit;
     bool accepting = false; // an accept is pending
 };
 
@@ -170,8 +175,12 @@ struct Network::State final : Bus {
         io.stop();
     }
 
-    uint16_t open_listener(Listener &listener, uint16_t port, const std::string &address)
+    uint16_t open_listener(Listener &listener,
+                           uint16_t port,
+                           const std::string &address,
+                           const connections::PortLimit &limit)
     {
+        listener.limit = limit;
         std::string where = address + " port " + std::to_string(port);
         try {
             asio::ip::tcp::endpoint endpoint(asio::ip::make_address(address), port);
@@ -188,30 +197,49 @@ struct Network::State final : Bus {
         return listener.acceptor.local_endpoint().port();
     }
 
-    size_t open_clients() const
-    {
-        return size_t(std::count_if(
-          clients.begin(), clients.end(), [](const auto &client) { return !client->closed; }));
-    }
-
-    // Accepts the next client, unless MAX_CLIENTS are connected: then new
-    // connections wait in the system's backlog until one leaves (sweep).
+    // Accepts connections as they come; after a failure (no descriptor
+    // left, say), again at the next service() rather than at once.
     void accept(Listener &listener)
     {
-        listener.accepting = open_clients() < MAX_CLIENTS;
-        if (!listener.accepting)
-            return;
+        listener.accepting = true;
         listener.acceptor.async_accept(
           [this, &listener](std::error_code error, asio::ip::tcp::socket socket) {
+              listener.accepting = false;
               if (error == asio::error::operation_aborted)
                   return;
-              if (!error)
-                  add_client(std::move(socket), listener.robot);
+              if (error)
+                  return;
+              admit(std::move(socket), listener);
               accept(listener);
           });
     }
 
-    void add_client(asio::ip::tcp::socket socket, Board *robot)
+    // A connection to a full port takes the place of the client that has
+    // been silent the longest, if silent for the grace; else it is closed.
+    void admit(asio::ip::tcp::socket socket, const Listener &listener)
+    {
+        bool room = connections::make_room(
+          clients,
+          [&](const std::shared_ptr<Client> &client) {
+              return !client->closed && client->listener == &listener;
+          },
+          [](const std::shared_ptr<Client> &client) { return client->heard; },
+          [this](std::shared_ptr<Client> &client) {
+              close(*client, "silent while its port was full");
+          },
+          listener.limit);
+        if (room) {
+            add_client(std::move(socket), listener);
+            return;
+        }
+        std::fprintf(stderr,
+                     "network: connection closed: its port holds %zu clients already\n",
+                     listener.limit.capacity);
+        std::error_code ignored;
+        socket.close(ignored);
+    }
+
+    void add_client(asio::ip::tcp::socket socket, const Listener &listener)
     {
         std::error_code ignored;
         // Hosts wait for each answer: do not let Nagle hold small frames.
@@ -219,7 +247,9 @@ struct Network::State final : Bus {
         auto client = std::make_shared<Client>(io);
         client->socket = std::move(socket);
         client->number = next_client_number++;
-        client->robot = robot;
+        client->listener = &listener;
+        client->robot = listener.robot;
+        client->heard = connections::Clock::now();
         clients.push_back(client);
         start_read(client);
     }
@@ -238,6 +268,7 @@ struct Network::State final : Bus {
                   close(*client, nullptr); // closed by the peer, or failed
                   return;
               }
+              client->heard = connections::Clock::now();
               if (!client->reader.feed(client->input.data(), count)) {
                   close(*client, "it sent a frame longer than the protocol allows");
                   return;
@@ -427,15 +458,20 @@ Network::Network()
 
 Network::~Network() = default;
 
-uint16_t Network::listen(uint16_t port, const std::string &address)
+uint16_t Network::listen(uint16_t port,
+                         const std::string &address,
+                         const connections::PortLimit &limit)
 {
     auto listener = std::make_unique<Listener>(state_->io);
-    uint16_t chosen = state_->open_listener(*listener, port, address);
+    uint16_t chosen = state_->open_listener(*listener, port, address, limit);
     state_->listeners.push_back(std::move(listener));
     return chosen;
 }
 
-uint16_t Network::listen_robot(hal_board *board, uint16_t port, const std::string &address)
+uint16_t Network::listen_robot(hal_board *board,
+                               uint16_t port,
+                               const std::string &address,
+                               const connections::PortLimit &limit)
 {
     auto attached = std::find_if(state_->boards.begin(),
                                  state_->boards.end(),
@@ -444,7 +480,7 @@ uint16_t Network::listen_robot(hal_board *board, uint16_t port, const std::strin
         throw std::invalid_argument("listen_robot: the board is not on the network");
     auto listener = std::make_unique<Listener>(state_->io);
     listener->robot = attached->get();
-    uint16_t chosen = state_->open_listener(*listener, port, address);
+    uint16_t chosen = state_->open_listener(*listener, port, address, limit);
     state_->listeners.push_back(std::move(listener));
     return chosen;
 }

@@ -12,9 +12,10 @@
 // its sources in turn (the robots, then each client), a client may have only
 // a few frames waiting for any robot (then it is not read until they go, so
 // TCP slows it down), and a client that reads nothing while a megabyte waits
-// for it is dropped. Beyond MAX_CLIENTS, new connections wait in the
-// system's backlog until a client leaves. Memory stays bounded whatever
-// clients send.
+// for it is dropped. Each port holds its own number of clients
+// (tools/connections/port_limit.hpp): a connection beyond takes the place of
+// the client silent the longest if that one has said nothing for the grace,
+// else it is closed at once. Memory stays bounded whatever clients send.
 //
 // A robot may also have ports of its own (listen_robot), as each robot of the
 // reference simulator has: a client there is like a tool linked to that robot
@@ -32,6 +33,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/connections/port_limit.hpp"
+
 extern "C" {
 #include "boards/epuck_host/host_board.h"
 }
@@ -46,7 +49,8 @@ inline constexpr const char *LOOPBACK_ADDRESS = "127.0.0.1";
 inline constexpr size_t CLIENT_FRAMES_PER_ROBOT = 64;  // waiting for one robot
 inline constexpr size_t CLIENT_BYTES_PER_ROBOT = 4096; // the same, in bytes
 inline constexpr size_t CLIENT_UNREAD_LIMIT = 1 << 20; // waiting for the client to read
-inline constexpr size_t MAX_CLIENTS = 64;              // connected at once
+inline constexpr size_t MAX_CLIENTS = 64;              // on the network's port at once
+inline constexpr size_t ROBOT_PORT_CLIENTS = 8;        // on one robot's own port at once
 inline constexpr size_t ROBOT_FRAMES_PER_ROBOT = 4096; // from the robots, for one robot
 
 using Frame = std::vector<uint8_t>;
@@ -75,10 +79,12 @@ class Network
     Network(const Network &) = delete;
     Network &operator=(const Network &) = delete;
 
-    // Accepts clients on `port` of `address` (0: a port the system chooses);
-    // returns the port. Throws std::runtime_error with the system's reason
-    // when it cannot.
-    uint16_t listen(uint16_t port, const std::string &address = LOOPBACK_ADDRESS);
+    // Accepts clients on `port` of `address` (0: a port the system chooses),
+    // as many at once as `limit` says; returns the port. Throws
+    // std::runtime_error with the system's reason when it cannot.
+    uint16_t listen(uint16_t port,
+                    const std::string &address = LOOPBACK_ADDRESS,
+                    const connections::PortLimit &limit = { MAX_CLIENTS, connections::IDLE_GRACE });
 
     // Joins a board: its link output comes to the bus, the bus feeds its link.
     void attach(hal_board *board);
@@ -90,7 +96,9 @@ class Network
     // bus. Throws std::invalid_argument for a board not attached.
     uint16_t listen_robot(hal_board *board,
                           uint16_t port,
-                          const std::string &address = LOOPBACK_ADDRESS);
+                          const std::string &address = LOOPBACK_ADDRESS,
+                          const connections::PortLimit &limit = { ROBOT_PORT_CLIENTS,
+                                                                  connections::IDLE_GRACE });
 
     // Moves frames: accepts clients, reads and writes sockets (waiting up to
     // `timeout_ms` for one of them), and feeds boards what their links can

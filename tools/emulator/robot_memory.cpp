@@ -170,7 +170,7 @@ void power_on(host_robot &robot,
         prepare(robot);
     if (!bytecode.empty())
         store_program(robot.board, bytecode);
-    host_robot_start_application(&robot);
+    host_robot_power_on(&robot);
 }
 
 } // namespace aseba::host

@@ -72,7 +72,9 @@ class MemoryFile
 
 // Powers a robot on: its flash gets the placeholder application, then
 // `prepare` (if given) may change its memories, then `bytecode` (if not
-// empty) is stored, and the firmware starts with the stored program.
+// empty) is stored, and its bootloader decides (host_robot_power_on): the
+// firmware starts with the stored program, or, when the flash no longer
+// holds a valid application, the robot waits in its bootloader.
 void power_on(host_robot &robot,
               const std::function<void(host_robot &)> &prepare,
               const std::vector<uint16_t> &bytecode);

@@ -6,7 +6,6 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -50,10 +49,8 @@ order: what `make dspic30` compares with the linked programs.)";
 
 void write_file(const std::string &path, const std::string &text)
 {
-    std::ofstream file(path, std::ios::binary);
-    file << text;
-    if (!file)
-        throw std::runtime_error(path + ": cannot be written");
+    if (std::string error = aseba::command_line::write_whole_file(path, text); !error.empty())
+        throw std::runtime_error(error);
 }
 
 struct Files {
@@ -107,17 +104,11 @@ int dump(const std::vector<std::string> &arguments)
         print(address, value);
     for (const auto &[address, value] : image.configuration)
         print(address, value);
-    std::cout.flush();
-    if (!std::cout) {
-        std::cerr << "epuck-image: the dump cannot be written\n";
-        return aseba::command_line::EXIT_FAILED;
-    }
     return aseba::command_line::EXIT_OK;
 }
 
-} // namespace
-
-int main(int argc, char **argv)
+// The program; its output is checked by main.
+int build_or_install(int argc, char **argv)
 {
     if (argc >= 2 && std::string(argv[1]) == "install")
         return aseba::flash::run_install_command(
@@ -159,4 +150,11 @@ int main(int argc, char **argv)
         return aseba::command_line::EXIT_FAILED;
     }
     return aseba::command_line::EXIT_OK;
+}
+
+} // namespace
+
+int main(int argc, char **argv)
+{
+    return aseba::command_line::finish_standard_output("epuck-image", build_or_install(argc, argv));
 }

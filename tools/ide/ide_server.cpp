@@ -126,6 +126,19 @@ std::optional<Json> runtime_error_json(const client::Message &message,
     return Json{ { "kind", kind }, { "pc", pc }, { "line", line }, { "message", text } };
 }
 
+std::shared_ptr<client::CompiledProgram> compiled(NodeKey key,
+                                                  const TargetDescription &description,
+                                                  const CommonDefinitions &definitions,
+                                                  const std::string &source)
+{
+    auto program = std::make_shared<client::CompiledProgram>();
+    program->file_name = robot_name(key);
+    program->source = source;
+    program->definitions = definitions;
+    program->result = compile(source, description, program->definitions);
+    return program;
+}
+
 } // namespace
 
 struct IdeServer::Robot {
@@ -172,6 +185,7 @@ IdeServer::IdeServer(asio::io_context &io, IdeOptions options, std::vector<Stati
         received(connection, std::move(text));
     };
     handlers.closed = [this](ConnectionId connection) { closed(connection); };
+    background_ = std::make_unique<BackgroundWorker>(io_);
     web_ = std::make_unique<WebServer>(io_, options_.web, std::move(files), std::move(handlers));
 
     NetworkReports reports;
@@ -608,12 +622,30 @@ IdeServer::Robot &IdeServer::ready_robot(NodeKey key)
 std::shared_ptr<client::CompiledProgram> IdeServer::compile_for(const Robot &robot,
                                                                 const std::string &source) const
 {
-    auto program = std::make_shared<client::CompiledProgram>();
-    program->file_name = robot_name(robot.snapshot.key);
-    program->source = source;
-    program->definitions = workspace_.definitions;
-    program->result = compile(source, robot.snapshot.description, program->definitions);
-    return program;
+    return compiled(robot.snapshot.key, robot.snapshot.description, workspace_.definitions, source);
+}
+
+IdeServer::CompileJob IdeServer::compile_job(const Robot &robot, const std::string &source)
+{
+    return { robot.snapshot.key, robot.snapshot.description, source, nullptr };
+}
+
+void IdeServer::compile_then(ConnectionId connection,
+                             uint64_t id,
+                             CompileJobs jobs,
+                             std::function<void(CompileJobs &)> done)
+{
+    auto shared = std::make_shared<CompileJobs>(std::move(jobs));
+    background_->run(
+      [shared, definitions = workspace_.definitions] {
+          for (CompileJob &job : *shared)
+              job.program = compiled(job.robot, job.description, definitions, job.source);
+      },
+      [this, connection, id, shared, done = std::move(done)](const std::string &error) {
+          if (!error.empty())
+              return reply_error(connection, id, error);
+          done(*shared);
+      });
 }
 
 std::vector<std::pair<unsigned, std::optional<uint16_t>>> IdeServer::breakpoint_addresses(
@@ -628,6 +660,19 @@ std::vector<std::pair<unsigned, std::optional<uint16_t>>> IdeServer::breakpoint_
 
 void IdeServer::remember_script(ConnectionId from, NodeKey key, const std::string &source)
 {
+    // What a page can make the server keep: a script for each robot that is
+    // or was on the network, and all of them within a budget.
+    if (robots_.count(key) == 0)
+        throw std::runtime_error("robot " + robot_name(key) +
+                                 " is not on the network and never was: its script is not kept");
+    size_t total = source.size();
+    for (const auto &[other, text] : workspace_.scripts)
+        total += other == key ? 0 : text.size();
+    if (total > options_.max_script_bytes)
+        throw std::runtime_error(
+          "the robots' scripts would take " + std::to_string(total) + " bytes, more than the " +
+          std::to_string(options_.max_script_bytes) + " the IDE keeps: the script of " +
+          robot_name(key) + " is not kept");
     std::string &script = workspace_.scripts[key];
     if (script == source)
         return;
@@ -642,9 +687,15 @@ void IdeServer::handle(ConnectionId connection, uint64_t id, CompileRequest &req
     if (request.remember)
         remember_script(connection, request.robot, request.source);
     Robot &robot = ready_robot(request.robot);
-    auto program = compile_for(robot, request.source);
-    reply(
-      connection, id, { { "compile", compile_json(program->result, robot.snapshot.description) } });
+    compile_then(
+      connection,
+      id,
+      { compile_job(robot, request.source) },
+      [this, connection, id](CompileJobs &jobs) {
+          reply(connection,
+                id,
+                { { "compile", compile_json(jobs[0].program->result, jobs[0].description) } });
+      });
 }
 
 void IdeServer::handle(ConnectionId connection, uint64_t id, ScriptRequest &request)
@@ -655,37 +706,49 @@ void IdeServer::handle(ConnectionId connection, uint64_t id, ScriptRequest &requ
 
 void IdeServer::handle(ConnectionId connection, uint64_t id, LoadRequest &request)
 {
-    struct Upload {
-        NodeKey key;
-        std::shared_ptr<const client::CompiledProgram> program;
-        std::vector<std::pair<unsigned, std::optional<uint16_t>>> breakpoints;
-    };
-    // Compile for everyone first: one bad program loads nothing.
-    std::vector<Upload> uploads;
-    Json failures = Json::array();
+    CompileJobs jobs;
+    std::vector<std::vector<unsigned>> breakpoints;
     for (LoadRequest::Program &entry : request.programs) {
         remember_script(connection, entry.robot, entry.source);
         Robot &robot = ready_robot(entry.robot);
         robot.breakpoints = entry.breakpoints;
-        auto program = compile_for(robot, entry.source);
-        if (!program->result.ok) {
-            Json failure = compile_json(program->result, robot.snapshot.description);
-            failure["robot"] = robot_name(entry.robot);
-            failures.push_back(failure);
-            continue;
-        }
-        uploads.push_back(
-          { entry.robot, program, breakpoint_addresses(*program, entry.breakpoints) });
-    }
-    if (!failures.empty()) {
-        reply(connection,
-              id,
-              { { "ok", false },
-                { "error", "a program does not compile: nothing was loaded" },
-                { "failures", failures } });
-        return;
+        jobs.push_back(compile_job(robot, entry.source));
+        breakpoints.push_back(entry.breakpoints);
     }
     bool run = request.run;
+    // Compile for everyone first: one bad program loads nothing.
+    compile_then(connection,
+                 id,
+                 std::move(jobs),
+                 [this, connection, id, breakpoints, run](CompileJobs &compiled_jobs) {
+                     std::vector<Upload> uploads;
+                     Json failures = Json::array();
+                     for (size_t i = 0; i < compiled_jobs.size(); i++) {
+                         const CompileJob &job = compiled_jobs[i];
+                         if (!job.program->result.ok) {
+                             Json failure = compile_json(job.program->result, job.description);
+                             failure["robot"] = robot_name(job.robot);
+                             failures.push_back(failure);
+                             continue;
+                         }
+                         uploads.push_back({ job.robot,
+                                             job.program,
+                                             breakpoint_addresses(*job.program, breakpoints[i]) });
+                     }
+                     if (!failures.empty()) {
+                         reply(connection,
+                               id,
+                               { { "ok", false },
+                                 { "error", "a program does not compile: nothing was loaded" },
+                                 { "failures", failures } });
+                         return;
+                     }
+                     upload(connection, id, std::move(uploads), run);
+                 });
+}
+
+void IdeServer::upload(ConnectionId connection, uint64_t id, std::vector<Upload> uploads, bool run)
+{
     on_network(
       [uploads, run](client::Network &network) {
           Json results = Json::array();
@@ -910,9 +973,21 @@ void IdeServer::handle(ConnectionId connection, uint64_t id, WatchRequest &reque
 
 void IdeServer::handle(ConnectionId connection, uint64_t id, OpenProjectRequest &request)
 {
-    Workspace opened = workspace_;
-    opened.open(request.file_name, request.content);
-    workspace_ = std::move(opened);
+    auto project = std::make_shared<AeslProject>();
+    background_->run(
+      [project, name = request.file_name, content = std::move(request.content)] {
+          *project = read_project(name, content);
+      },
+      [this, connection, id, project](const std::string &error) {
+          if (!error.empty())
+              return reply_error(connection, id, error);
+          open_project(connection, id, std::move(*project));
+      });
+}
+
+void IdeServer::open_project(ConnectionId connection, uint64_t id, AeslProject &&project)
+{
+    workspace_.open(std::move(project));
     std::map<NodeKey, std::string> names;
     for (const auto &[key, robot] : robots_)
         if (robot.present && robot.snapshot.described)
@@ -952,12 +1027,27 @@ void IdeServer::handle(ConnectionId connection, uint64_t id, SaveProjectRequest 
 void IdeServer::handle(ConnectionId connection, uint64_t id, BytecodeRequest &request)
 {
     Robot &robot = ready_robot(request.robot);
-    auto program = compile_for(robot, request.source);
-    if (!program->result.ok)
-        throw std::runtime_error("the program does not compile: " + program->result.error.message);
-    NodeKey key = request.robot;
-    TargetDescription description = robot.snapshot.description;
-    std::vector<uint16_t> bytecode = program->result.bytecode;
+    compile_then(connection,
+                 id,
+                 { compile_job(robot, request.source) },
+                 [this, connection, id](CompileJobs &jobs) {
+                     const CompileJob &job = jobs[0];
+                     if (!job.program->result.ok)
+                         return reply_error(connection,
+                                            id,
+                                            "the program does not compile: " +
+                                              job.program->result.error.message);
+                     save_binary(
+                       connection, id, job.robot, job.description, job.program->result.bytecode);
+                 });
+}
+
+void IdeServer::save_binary(ConnectionId connection,
+                            uint64_t id,
+                            NodeKey key,
+                            const TargetDescription &description,
+                            const std::vector<uint16_t> &bytecode)
+{
     on_network(
       [key, description](client::Network &network) {
           // .abo files carry the robot's product id and firmware version.

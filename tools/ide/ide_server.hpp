@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arena_link.hpp"
+#include "background_worker.hpp"
 #include "network_worker.hpp"
 #include "requests.hpp"
 #include "web_server.hpp"
@@ -44,6 +45,10 @@ struct IdeOptions {
     // or HOST:PORT), or empty.
     std::string arena_feed;
     client::Milliseconds answer_timeout = client::DEFAULT_ANSWER_TIMEOUT;
+    // What the robots' scripts may take together, in bytes: what any page
+    // can make the server keep (a script is kept only for a robot that is
+    // or was on the network, each at most MAX_SCRIPT_BYTES).
+    size_t max_script_bytes = 16 * 1024 * 1024;
 };
 
 class IdeServer
@@ -112,6 +117,40 @@ class IdeServer
     // Compiles `source` for `robot` with the project's definitions.
     std::shared_ptr<client::CompiledProgram> compile_for(const Robot &robot,
                                                          const std::string &source) const;
+
+    // A program to compile for a robot, off the thread that serves pages.
+    struct CompileJob {
+        NodeKey robot;
+        TargetDescription description;
+        std::string source;
+        std::shared_ptr<client::CompiledProgram> program; // once compiled
+    };
+    using CompileJobs = std::vector<CompileJob>;
+    static CompileJob compile_job(const Robot &robot, const std::string &source);
+    // Compiles `jobs` on the background thread with the project's
+    // definitions as they are now, then calls `done` here (or replies with
+    // the error to request `id`).
+    void compile_then(ConnectionId connection,
+                      uint64_t id,
+                      CompileJobs jobs,
+                      std::function<void(CompileJobs &)> done);
+
+    // A compiled program on its way to its robot, with its breakpoints.
+    struct Upload {
+        NodeKey key;
+        std::shared_ptr<const client::CompiledProgram> program;
+        std::vector<std::pair<unsigned, std::optional<uint16_t>>> breakpoints;
+    };
+    // Loads `uploads` (and runs them if `run`), then replies to `id`.
+    void upload(ConnectionId connection, uint64_t id, std::vector<Upload> uploads, bool run);
+    // Replies to `id` with `bytecode` as Studio's .abo file for robot `key`.
+    void save_binary(ConnectionId connection,
+                     uint64_t id,
+                     NodeKey key,
+                     const TargetDescription &description,
+                     const std::vector<uint16_t> &bytecode);
+    // Makes `project` the one every page edits; replies to `id`.
+    void open_project(ConnectionId connection, uint64_t id, AeslProject &&project);
     // Breakpoint lines and their addresses in `program`.
     static std::vector<std::pair<unsigned, std::optional<uint16_t>>> breakpoint_addresses(
       const client::CompiledProgram &program,
@@ -151,6 +190,7 @@ class IdeServer
     Json arena_; // the arena's geometry, or null
     std::unique_ptr<ArenaLink> arena_link_;
     std::unique_ptr<WebServer> web_;
+    std::unique_ptr<BackgroundWorker> background_;
     // Last: it is stopped first, before what its reports would touch.
     std::unique_ptr<NetworkWorker> worker_;
 };

@@ -4,6 +4,7 @@
 LIBRARIES += aseba_ide
 aseba_ide_SOURCES := tools/ide/requests.cpp tools/ide/network_worker.cpp tools/ide/workspace.cpp \
                      tools/ide/binary_file.cpp tools/ide/arena_link.cpp tools/ide/ide_server.cpp \
+                     tools/ide/background_worker.cpp \
                      tools/ide/web_server.cpp
 # websocketpp 0.8.2's headers do not compile as C++20 (web_server.cpp says
 # why); this one file is C++17 and nothing of websocketpp leaves it.

@@ -18,6 +18,8 @@
 
 #include <asio/io_context.hpp>
 
+#include "tools/connections/port_limit.hpp"
+
 namespace aseba::ide
 {
 
@@ -33,6 +35,18 @@ struct StaticFile {
 struct WebServerOptions {
     std::string bind_address = "127.0.0.1";
     uint16_t port = 0; // 0: any free port (read it back with port())
+    // The names a browser may reach the server by, besides the loopback
+    // names and IP addresses (which no other site can rebind): a request
+    // naming another host in its Host header is refused, so that a page of
+    // another site whose name it resolves to this computer (DNS rebinding)
+    // cannot drive the robots.
+    std::vector<std::string> host_names;
+    // When not empty, every request must carry it: as ?token=... (the
+    // address printed at start, which also sets a cookie) or as that cookie.
+    std::string access_token;
+    // Connections (pages, their files and WebSockets) held at once, and how
+    // long one must have been silent to give its place to a newcomer.
+    connections::PortLimit connections{ 128, connections::IDLE_GRACE };
     // A WebSocket message larger than this closes that connection (1009).
     size_t max_message_bytes = 4 * 1024 * 1024;
     // Above this many bytes waiting for a browser, updates that can be
@@ -58,6 +72,14 @@ class WebServerError : public std::runtime_error
   public:
     using std::runtime_error::runtime_error;
 };
+
+// Whether `address` (an IP address) is one of this computer's loopback
+// addresses, which other computers cannot reach.
+bool is_loopback_address(const std::string &address);
+
+// The name of the cookie that carries the access token of the server on
+// `port` (cookies are shared by every port of a host).
+std::string token_cookie_name(uint16_t port);
 
 enum class Delivery {
     essential, // a reply or a change of state: always queued

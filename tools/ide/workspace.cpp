@@ -12,14 +12,24 @@
 namespace aseba::ide
 {
 
-void Workspace::open(const std::string &file_name, const std::string &text)
+AeslProject read_project(const std::string &file_name, const std::string &text)
 {
     AeslReadResult read = read_aesl(text);
     if (!read.ok)
         throw ProjectError(file_name + ":" + std::to_string(read.error_line) + ": " + read.error);
-    definitions = std::move(read.project.definitions);
+    return std::move(read.project);
+}
+
+void Workspace::open(const std::string &file_name, const std::string &text)
+{
+    open(read_project(file_name, text));
+}
+
+void Workspace::open(AeslProject &&project)
+{
+    definitions = std::move(project.definitions);
     scripts.clear();
-    programs = std::move(read.project.nodes);
+    programs = std::move(project.nodes);
     waiting = programs;
 }
 

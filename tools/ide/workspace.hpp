@@ -37,6 +37,8 @@ struct Workspace {
     // Replaces everything with the project in `text` (named `file_name` in
     // errors); the programs wait for their robots. Throws ProjectError.
     void open(const std::string &file_name, const std::string &text);
+    // The same with a project already read (read_project).
+    void open(AeslProject &&project);
 
     // Gives a robot without a script the project's program for it: the
     // program of its name and id, else the first of its name, as
@@ -55,6 +57,9 @@ struct Workspace {
     // The program for a robot: same name and id, else the first of its name.
     const AeslNode *program_for(NodeKey key, const std::string &robot_name) const;
 };
+
+// The project in `text` (named `file_name` in errors); throws ProjectError.
+AeslProject read_project(const std::string &file_name, const std::string &text);
 
 // Reads a whole file; throws ProjectError.
 std::string read_project_file(const std::string &path);

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "bridge.hpp"
+#include "tools/client/terminal_text.hpp"
 #include "tools/command_line/command_line.hpp"
 
 namespace
@@ -235,6 +236,9 @@ void read_files(CommandLine &line)
 
 int main(int argc, char **argv)
 {
+    // The bridge's log names nodes and events as the network does: escaped
+    // before a terminal sees them.
+    aseba::client::TerminalFilter errors(std::cerr);
     CommandLine line = parse(argc, argv);
     read_files(line);
     struct sigaction action {
