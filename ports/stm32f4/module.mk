@@ -49,7 +49,11 @@ endif
 stm32f4: $(STM32F4_IMAGE).elf $(STM32F4_IMAGE).hex
 	@arm-none-eabi-size $(STM32F4_IMAGE).elf
 
-$(STM32F4_OUT)/obj/%.o: %.c | $(DEPS_STAMP) $(CROSS_DEPS_STAMP)
+# The ARM compiler is in two groups: `cross` (make stm32f4, cross-check) and
+# `test` (the QEMU tests' images); `make test` installs only the second.
+STM32F4_DEPS_STAMP := $(if $(filter test,$(MAKECMDGOALS)),$(TEST_DEPS_STAMP),$(CROSS_DEPS_STAMP))
+
+$(STM32F4_OUT)/obj/%.o: %.c | $(DEPS_STAMP) $(STM32F4_DEPS_STAMP)
 	@mkdir -p $(@D)
 	$(STM32F4_CC) $(STM32F4_CFLAGS) -MMD -MP -c $< -o $@
 
