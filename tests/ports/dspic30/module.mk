@@ -57,7 +57,8 @@ DSPIC30_HARNESS_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c,$(sort
                            ports/dspic30/dspic30_dsp_kernel.c ports/dspic30/dspic30_startup.c \
                            ports/dspic30/dspic30_runtime.c ports/dspic30/dspic30_clock.c \
                            ports/dspic30/dspic30_uart.c hal/hal_link_rings.c tests/ports/dspic30/target/harness_main.c \
-                           tests/ports/stm32f4/target/test_natives.c ports/dspic30/dspic30_reset.s
+                           tests/ports/stm32f4/target/test_natives.c \
+                           tests/native_functions_dsp/dsp_fft_truncating_mutant.c ports/dspic30/dspic30_reset.s
 DSPIC30_HARNESS_OBJECTS := $(patsubst %,$(DSPIC30_OUT)/obj/%.o,$(basename $(DSPIC30_HARNESS_SOURCES)))
 DSPIC30_HARNESS_SCRIPT := tests/ports/dspic30/target/harness.gld
 
@@ -90,6 +91,24 @@ dspic30_node_traces_test_SOURCES := tests/node/trace_test.cpp tests/node/node_ha
 dspic30_node_traces_test_LIBS := aseba_natives dspic30_sim
 dspic30_node_traces_test_LDLIBS := -lasebacommon $(DSPIC30_TEST_GTEST_LDLIBS)
 
+# The DSP natives' tests, unchanged, on the image's natives and the port's
+# DSP-engine kernel: remote_dsp_node.cpp stands for dsp_node.cpp. (Not the
+# demo test: the e-puck's 1,024 words of bytecode do not fit beside the
+# harness in the chip's RAM.)
+TESTS += dspic30_dsp_natives_test
+dspic30_dsp_natives_test_SOURCES := tests/ports/dspic30/remote_dsp_node.cpp \
+                                    tests/native_functions_dsp/dsp_expectations.cpp \
+                                    tests/native_functions_dsp/dsp_fft_test.cpp \
+                                    tests/native_functions_dsp/dsp_fft_exact_test.cpp \
+                                    tests/native_functions_dsp/dsp_fft_truncating_mutant.c \
+                                    tests/native_functions_dsp/dsp_filter_test.cpp \
+                                    tests/native_functions_dsp/dsp_correlation_test.cpp \
+                                    tests/native_functions_dsp/dsp_contract_test.cpp \
+                                    tests/ports/stm32f4/remote_vm.cpp vm/vm_native_text.c $(DSPIC30_REMOTE_SOURCES)
+dspic30_dsp_natives_test_LIBS := aseba_compiler aseba_natives dspic30_sim
+dspic30_dsp_natives_test_LDLIBS := $(DSPIC30_TEST_GTEST_LDLIBS)
+
 # The image these tests run; order-only, so that it does not enter the link.
-$(foreach v,host host-sanitize,$(foreach t,dspic30_vm_programs_test dspic30_node_traces_test,\
+$(foreach v,host host-sanitize,$(foreach t,dspic30_vm_programs_test dspic30_node_traces_test \
+                                           dspic30_dsp_natives_test,\
   $(BUILD)/$(v)/tests/$(t))): | $(DSPIC30_HARNESS).hex

@@ -101,6 +101,11 @@ class RemoteMachine
     std::vector<uint16_t> seen_[3]; // the memory as the remote machine has it
 };
 
+// Runs the call in `arguments` (the call byte first) on the bare VM `vm`:
+// its events to the VM's callbacks, its changes into `vm`; returns its
+// result (remote_vm.cpp).
+uint16_t call_vm(vm_state *vm, const Writer &arguments);
+
 // Stops the test with `message` (a broken remote machine is no test result).
 [[noreturn]] void fail(const std::string &message);
 

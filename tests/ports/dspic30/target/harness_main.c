@@ -93,6 +93,11 @@ static const vm_native_table epuck_natives = { epuck_native_list,
                                                NAT_STANDARD_COUNT + NAT_DSP_COUNT,
                                                nat_words };
 
+/* The DSP tests' deliberately faulty FFT (tests/native_functions_dsp/
+ * dsp_fft_truncating_mutant.c), which they must catch on this chip too:
+ * REMOTE_VM_CALL_NATIVE's index just after the e-puck's table. */
+void nat_dsp_fft_truncating_mutant_function(vm_state *vm, const int16_t *arguments);
+
 /* --- UART1, through the port's driver ---------------------------------------------------- */
 
 static hal_board board;
@@ -543,16 +548,22 @@ static bool read_call(server *s)
     }
 }
 
-/* REMOTE_VM_CALL_NATIVE: native `first` of the table, at pc `second`,
- * inside a running event, as NATIVE_CALL calls it (bytecode.md §9). */
+/* REMOTE_VM_CALL_NATIVE: native `first` of the table (or, just after the
+ * e-puck's, the faulty FFT), at pc `second`, inside a running event, as
+ * NATIVE_CALL calls it (bytecode.md §9). */
 static uint16_t call_native(server *s)
 {
     vm_state *vm = machine_vm(s);
-    if (s->first >= vm->natives.count)
+    vm_native_function function;
+    if (s->first < vm->natives.count)
+        function = vm->natives.natives[s->first].function;
+    else if (vm->natives.natives == epuck_native_list && s->first == vm->natives.count)
+        function = nat_dsp_fft_truncating_mutant_function;
+    else
         return 0;
     vm->pc = s->second;
     vm->flags = VM_FLAG_EVENT_ACTIVE | VM_FLAG_EVENT_RUNNING;
-    vm->natives.natives[s->first].function(vm, (const int16_t *)s->bulk.words);
+    function(vm, (const int16_t *)s->bulk.words);
     return 1;
 }
 
