@@ -1,6 +1,8 @@
 # Tests of the dsPIC30 port (ports/dspic30) and of the e-puck's board on it
 # (boards/epuck_dspic30), compiled on the PC against a simulated register
-# file (simulated_chip.cpp), and of the images `make dspic30` builds.
+# file (simulated_chip.cpp), and of the images `make dspic30` builds; and
+# the firmware's own tests on the dsPIC's machine code, run by the
+# simulator of tools/dspic30_sim (the harness image below).
 DSPIC30_TEST_GTEST_LDLIBS := -lgtest -lgtest_main -pthread
 
 # Every source of the port and of the board but the DSP kernel
@@ -112,3 +114,10 @@ dspic30_dsp_natives_test_LDLIBS := $(DSPIC30_TEST_GTEST_LDLIBS)
 $(foreach v,host host-sanitize,$(foreach t,dspic30_vm_programs_test dspic30_node_traces_test \
                                            dspic30_dsp_natives_test,\
   $(BUILD)/$(v)/tests/$(t))): | $(DSPIC30_HARNESS).hex
+
+# The VM's instruction cycles per bytecode step on the dsPIC30F, for `make bench`.
+PROGRAMS += bench-dspic30-vm
+bench-dspic30-vm_SOURCES := tests/ports/dspic30/dspic30_vm_bench.cpp tests/ports/stm32f4/remote_vm.cpp \
+                            vm/vm_native_text.c $(DSPIC30_REMOTE_SOURCES)
+bench-dspic30-vm_LIBS := test_support aseba_compiler aseba_natives dspic30_sim
+$(BUILD)/host/bin/bench-dspic30-vm: | $(DSPIC30_HARNESS).hex
