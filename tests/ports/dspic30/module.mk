@@ -52,8 +52,8 @@ $(DSPIC30_IMAGES_TEST): tests/ports/dspic30/dspic30_images_test.py scripts/check
 # the port's DSP kernel, as in the application), the port's start-up and
 # run-time helpers, compiled by the application's rule and flags
 # (ports/dspic30/module.mk); the test natives and presets are the STM32F4
-# harness's (portable C). The port's clock and UART1 driver (interrupts and
-# rings) carry the link. A whole-chip layout (target/harness.gld).
+# harness's (portable C). The port's clock and UART1 driver (its receive
+# interrupt and ring) carry the requests. A whole-chip layout (target/harness.gld).
 DSPIC30_HARNESS := $(DSPIC30_OUT)/aseba-harness-dspic30
 DSPIC30_HARNESS_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c,$(sort $(wildcard vm/*.c native_functions/*.c))) \
                            ports/dspic30/dspic30_dsp_kernel.c ports/dspic30/dspic30_startup.c \
