@@ -232,6 +232,8 @@ make --no-print-directory BUILD="$build" "$bin/bench-dspic30-vm" >&2
 dspic30_vm=$("$bin/bench-dspic30-vm" 5 2>/dev/null)
 dspic30_per_step=$(sed -n 's/^cycles per step //p' <<<"$dspic30_vm")
 dspic30_steps_per_second=$(sed -n 's/^steps per second at 14.7456 MIPS //p' <<<"$dspic30_vm")
+dspic30_annex_steps=$(sed -n 's/^paper annex steps //p' <<<"$dspic30_vm")
+dspic30_annex_per_step=$(sed -n 's/^paper annex cycles per step //p' <<<"$dspic30_vm")
 [ -n "$dspic30_per_step" ] || { echo "bench: bench-dspic30-vm printed no figure: $dspic30_vm" >&2; exit 1; }
 
 # --- tools and network (edit to running, connections, flood) -----------------
@@ -326,6 +328,7 @@ dspic_table=$(
     echo "| bootloader image: code + constants, instruction words (bytes) | $(dspic_of bootloader_code) + $(dspic_of bootloader_const) ($(bytes_of_words $(($(dspic_of bootloader_code) + $(dspic_of bootloader_const))))) | - | - | ≤ 2,048 words (64 rows) |"
     echo "| VM: cycles per bytecode step, switch dispatch, bench/vm_workload.aseba (dsPIC: simulated, Timer2/3; AVR: simavr; Cortex-M4: QEMU instructions, computed goto) | $dspic30_per_step | $avr_cycles_switch | $stm32f4_per_step | |"
     echo "| VM: bytecode steps per second at the e-puck's 14.7456 MIPS | $dspic30_steps_per_second | - | - | |"
+    echo "| VM: the paper's controller (examples/paper-annex.aesl), its ir_sensors event with every sensor at 0: steps, cycles per step (natives included) | $dspic30_annex_steps, $dspic30_annex_per_step | - | - | |"
     echo "| RAM of the application, bytes: VM memory $dspic_ram_vm, node $dspic_ram_node (receive frame $(dspic_of node_receive_frame)), main loop $dspic_ram_loop, drivers $(dspic_of robot_devices), board $(dspic_of board), other $dspic_ram_other; the stack gets the rest | $dspic_ram_total (+ $(dspic_of ram_stack) stack) | $ram_total | $stm32f4_ram | ≤ $ram_goal_bytes (paper) |"
 )
 
