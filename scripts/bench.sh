@@ -224,6 +224,18 @@ read -r stm32f4_code stm32f4_constant stm32f4_ram < <(arm-none-eabi-size -A "$st
 stm32f4_runs=20
 stm32f4_per_step=$("$bin/bench-qemu" $stm32f4_runs 2>/dev/null | sed -n 's/^instructions per step //p')
 
+# --- the VM on the dsPIC30F (the harness image of pic30-elf-gcc -Os, simulated) --
+# bench/vm_workload.aseba on the chip's machine code, timed by its Timer2/3
+# on tools/dspic30_sim (tests/ports/dspic30/dspic30_vm_bench.cpp).
+echo "bench: VM on the dsPIC30F (simulated)" >&2
+make --no-print-directory BUILD="$build" "$bin/bench-dspic30-vm" >&2
+dspic30_vm=$("$bin/bench-dspic30-vm" 5 2>/dev/null)
+dspic30_per_step=$(sed -n 's/^cycles per step //p' <<<"$dspic30_vm")
+dspic30_steps_per_second=$(sed -n 's/^steps per second at 14.7456 MIPS //p' <<<"$dspic30_vm")
+dspic30_annex_steps=$(sed -n 's/^paper annex steps //p' <<<"$dspic30_vm")
+dspic30_annex_per_step=$(sed -n 's/^paper annex cycles per step //p' <<<"$dspic30_vm")
+[ -n "$dspic30_per_step" ] || { echo "bench: bench-dspic30-vm printed no figure: $dspic30_vm" >&2; exit 1; }
+
 # --- tools and network (edit to running, connections, flood) -----------------
 echo "bench: tools and network" >&2
 make --no-print-directory BUILD="$build" "$bin/bench-network" "$bin/aseba" >&2
@@ -314,6 +326,9 @@ dspic_table=$(
     echo "| application image: code + constants, instruction words (bytes) | $(dspic_of application_code) + $(dspic_of application_const) ($(bytes_of_words $(($(dspic_of application_code) + $(dspic_of application_const))))) | - | - | below the descriptor, 45,216 words |"
     echo "| application by part, code + constants, words | $dspic_parts | - | - | |"
     echo "| bootloader image: code + constants, instruction words (bytes) | $(dspic_of bootloader_code) + $(dspic_of bootloader_const) ($(bytes_of_words $(($(dspic_of bootloader_code) + $(dspic_of bootloader_const))))) | - | - | ≤ 2,048 words (64 rows) |"
+    echo "| VM: cycles per bytecode step, switch dispatch, bench/vm_workload.aseba (dsPIC: simulated, Timer2/3; AVR: simavr; Cortex-M4: QEMU instructions, computed goto) | $dspic30_per_step | $avr_cycles_switch | $stm32f4_per_step | |"
+    echo "| VM: bytecode steps per second at the e-puck's 14.7456 MIPS | $dspic30_steps_per_second | - | - | |"
+    echo "| VM: the paper's controller (examples/paper-annex.aesl), its ir_sensors event with every sensor at 0: steps, cycles per step (natives included) | $dspic30_annex_steps, $dspic30_annex_per_step | - | - | |"
     echo "| RAM of the application, bytes: VM memory $dspic_ram_vm, node $dspic_ram_node (receive frame $(dspic_of node_receive_frame)), main loop $dspic_ram_loop, drivers $(dspic_of robot_devices), board $(dspic_of board), other $dspic_ram_other; the stack gets the rest | $dspic_ram_total (+ $(dspic_of ram_stack) stack) | $ram_total | $stm32f4_ram | ≤ $ram_goal_bytes (paper) |"
 )
 

@@ -1,19 +1,11 @@
+// DspNode (dsp_node.hpp): the DSP natives on the host's VM.
+
 #include "dsp_node.hpp"
 
-#include <algorithm>
-#include <cmath>
 #include <stdexcept>
-
-#include "tools/compiler/target_presets.hpp"
 
 extern "C" {
 #include "nat_words.h"
-}
-
-aseba::NativeFunction description_of(const vm_native &native)
-{
-    const vm_native list[] = { native };
-    return aseba::native_function(vm_native_table{ list, 1, nat_words }, 0);
 }
 
 namespace
@@ -124,23 +116,4 @@ void DspNode::load_and_run_init(const std::vector<uint16_t> &image)
         throw std::invalid_argument("bytecode does not handle init");
     vm.flags = VM_FLAG_EVENT_ACTIVE;
     vm_run(&vm, 0);
-}
-
-Words random_words(std::mt19937 &generator, size_t count, int low, int high)
-{
-    std::uniform_int_distribution<int> distribution(low, high);
-    Words words(count);
-    for (auto &word : words)
-        word = static_cast<int16_t>(distribution(generator));
-    return words;
-}
-
-int16_t clamp_to_int16(double value)
-{
-    return static_cast<int16_t>(std::clamp(value, double(INT16_MIN), double(INT16_MAX)));
-}
-
-double round_half_up(double sum, int shift)
-{
-    return std::floor(sum / std::ldexp(1.0, shift) + 0.5);
 }

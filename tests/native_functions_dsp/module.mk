@@ -3,7 +3,7 @@
 # through the VM's NATIVE_CALL; dsp.fft also bit for bit against a model, with
 # a deliberately faulty copy (dsp_fft_truncating_mutant.c) it must catch.
 TESTS += dsp_natives_test
-dsp_natives_test_SOURCES := tests/native_functions_dsp/dsp_node.cpp \
+dsp_natives_test_SOURCES := tests/native_functions_dsp/dsp_node.cpp tests/native_functions_dsp/dsp_expectations.cpp \
                             tests/native_functions_dsp/dsp_fft_test.cpp \
                             tests/native_functions_dsp/dsp_fft_exact_test.cpp \
                             tests/native_functions_dsp/dsp_fft_truncating_mutant.c \
@@ -20,6 +20,7 @@ dsp_natives_test_LDLIBS := -lasebacompiler -lasebacommon -lgtest -lgtest_main -p
 
 # One DSP native call, for instruction counts under callgrind (see the file).
 PROGRAMS += bench-dsp
-bench-dsp_SOURCES := tests/native_functions_dsp/dsp_bench.cpp tests/native_functions_dsp/dsp_node.cpp
+bench-dsp_SOURCES := tests/native_functions_dsp/dsp_bench.cpp tests/native_functions_dsp/dsp_node.cpp \
+                     tests/native_functions_dsp/dsp_expectations.cpp
 bench-dsp_LIBS := aseba_compiler aseba_natives aseba_vm
 

@@ -29,8 +29,9 @@ $(STM32F4_HARNESS).elf: $(STM32F4_HARNESS_OBJECTS) $(STM32F4_SCRIPT)
 QEMU_TEST_LDLIBS := -lgtest -lgtest_main -pthread
 QEMU_MACHINE_SOURCES := tests/ports/stm32f4/qemu_machine.cpp tests/interop/child_process.cpp \
                         tests/interop/interop_support.cpp
-QEMU_REMOTE_SOURCES := tests/ports/stm32f4/remote_link.cpp $(QEMU_MACHINE_SOURCES)
-EXTRA_CFLAGS_tests/ports/stm32f4/remote_link := '-DQEMU_HARNESS_IMAGE="$(STM32F4_HARNESS).elf"'
+QEMU_REMOTE_SOURCES := tests/ports/stm32f4/remote_link.cpp tests/ports/stm32f4/qemu_link.cpp \
+                       $(QEMU_MACHINE_SOURCES)
+EXTRA_CFLAGS_tests/ports/stm32f4/qemu_link := '-DQEMU_HARNESS_IMAGE="$(STM32F4_HARNESS).elf"'
 
 TESTS += qemu_vm_programs_test
 qemu_vm_programs_test_SOURCES := tests/vm/programs_test.cpp tests/vm/program_script.cpp \

@@ -1,9 +1,6 @@
 #include "tests/ports/stm32f4/remote_link.hpp"
 
 #include <stdexcept>
-#include <unistd.h>
-
-#include "tests/ports/stm32f4/qemu_machine.hpp"
 
 namespace qemu_test
 {
@@ -11,7 +8,6 @@ namespace qemu_test
 namespace
 {
 
-constexpr int answer_timeout_ms = 20000;
 constexpr size_t area_count = 3;
 
 uint16_t *area_words(vm_state *vm, size_t area)
@@ -36,7 +32,7 @@ uint16_t area_size(const vm_state *vm, size_t area)
 
 void fail(const std::string &message)
 {
-    throw std::runtime_error("harness image on QEMU: " + message);
+    throw std::runtime_error("harness image: " + message);
 }
 
 uint8_t Reader::u8()
@@ -52,26 +48,6 @@ uint16_t Reader::u16()
     return uint16_t(low | u8() << 8);
 }
 
-// The harness image, started by this connection: it announces itself with
-// an empty answer once it listens.
-struct RemoteMachine::Connection {
-    explicit Connection(bool icount)
-      : machine(QEMU_HARNESS_IMAGE, icount, Start::on_first_connection)
-      , socket(machine.first_connection())
-    {
-        uint8_t ready[REMOTE_HEADER_BYTES];
-        read_exactly(socket, ready, sizeof ready, answer_timeout_ms);
-        if (ready[0] != REMOTE_ANSWER_MAGIC || ready[1] != REMOTE_OK || ready[2] || ready[3])
-            fail("the image did not announce itself");
-    }
-    QemuMachine machine;
-    int socket;
-    ~Connection()
-    {
-        ::close(socket);
-    }
-};
-
 RemoteMachine &RemoteMachine::instance()
 {
     static RemoteMachine machine;
@@ -80,25 +56,38 @@ RemoteMachine &RemoteMachine::instance()
 
 Bytes RemoteMachine::exchange(uint8_t command, const Bytes &payload)
 {
-    if (!connection_)
-        connection_ = std::make_shared<Connection>(count_instructions);
+    if (!link_)
+        link_ = open_harness_link(count_instructions);
     if (payload.size() > REMOTE_MAX_PAYLOAD)
         fail("a request of " + std::to_string(payload.size()) + " bytes is too large");
     uint8_t header[REMOTE_HEADER_BYTES] = {
         REMOTE_REQUEST_MAGIC, command, uint8_t(payload.size()), uint8_t(payload.size() >> 8)
     };
-    write_all(connection_->socket, header, sizeof header);
-    write_all(connection_->socket, payload.data(), payload.size());
-    read_exactly(connection_->socket, header, sizeof header, answer_timeout_ms);
-    if (header[0] != REMOTE_ANSWER_MAGIC)
-        fail("an answer without its magic byte");
-    Bytes answer(size_t(header[2] | header[3] << 8));
-    read_exactly(connection_->socket, answer.data(), answer.size(), answer_timeout_ms);
-    switch (header[1]) {
-    case REMOTE_OK: return answer;
-    case REMOTE_EVENTS_OVERFLOW: fail("a call caused more events than the image can report");
-    case REMOTE_GUARDS_BROKEN: fail("the VM wrote outside its memory on the target");
-    default: fail("the image refused a request (command " + std::to_string(command) + ")");
+    link_->send(header, sizeof header);
+    link_->send(payload.data(), payload.size());
+    // Events sent ahead (REMOTE_ANSWER_CONTINUES) go after the answer's result.
+    Bytes ahead;
+    for (;;) {
+        link_->receive(header, sizeof header);
+        if (header[0] != REMOTE_ANSWER_MAGIC)
+            fail("an answer without its magic byte");
+        Bytes answer(size_t(header[2] | header[3] << 8));
+        link_->receive(answer.data(), answer.size());
+        switch (header[1]) {
+        case REMOTE_ANSWER_CONTINUES:
+            ahead.insert(ahead.end(), answer.begin(), answer.end());
+            break;
+        case REMOTE_OK:
+            if (!ahead.empty()) {
+                if (command != REMOTE_CALL || answer.size() < 2)
+                    fail("events sent ahead of an answer that is no call's");
+                answer.insert(answer.begin() + 2, ahead.begin(), ahead.end());
+            }
+            return answer;
+        case REMOTE_EVENTS_OVERFLOW: fail("a call caused more events than the image can report");
+        case REMOTE_GUARDS_BROKEN: fail("the VM wrote outside its memory on the target");
+        default: fail("the image refused a request (command " + std::to_string(command) + ")");
+        }
     }
 }
 

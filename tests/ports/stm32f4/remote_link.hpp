@@ -1,6 +1,7 @@
 // The host's side of the harness image (remote_protocol.h): the image
-// running in QEMU, one request and its answer at a time, and the mirror of
-// the remote machine's memory that the vm.h and node.h shims keep in step.
+// running in QEMU (or, in the dsPIC30F's tests, on the simulated chip), one
+// request and its answer at a time, and the mirror of the remote machine's
+// memory that the vm.h and node.h shims keep in step.
 
 #pragma once
 
@@ -46,6 +47,23 @@ struct Reader {
     uint16_t u16();
 };
 
+// The byte link to the harness image, started on first use: QEMU's serial
+// port (qemu_link.cpp) or the simulated dsPIC30F's UART1
+// (tests/ports/dspic30/simulated_link.cpp); a test program links one.
+class HarnessLink
+{
+  public:
+    virtual ~HarnessLink() = default;
+    virtual void send(const uint8_t *bytes, size_t count) = 0;
+    // Exactly `count` bytes, or fail().
+    virtual void receive(uint8_t *bytes, size_t count) = 0;
+};
+
+// Starts the harness image and waits for its announcement (an empty
+// REMOTE_OK answer); `count_instructions`: for measurements (QEMU's
+// -icount).
+std::unique_ptr<HarnessLink> open_harness_link(bool count_instructions);
+
 // The remote machine's VM as the host sees it: the state block and memory
 // sent before each call, what changed applied after it.
 class RemoteMachine
@@ -68,7 +86,7 @@ class RemoteMachine
     Bytes bench(uint16_t event, uint16_t runs);
 
     // Before the first call: run QEMU with -icount (the guest's clock counts
-    // instructions), for measurements.
+    // instructions), for measurements; the simulated chip counts its cycles anyway.
     bool count_instructions = false;
 
     // The machine of this test program (the harness image in QEMU).
@@ -78,11 +96,15 @@ class RemoteMachine
     Bytes exchange(uint8_t command, const Bytes &payload);
     void write_changes(Writer &writer);
 
-    struct Connection;
-    std::shared_ptr<Connection> connection_;
+    std::shared_ptr<HarnessLink> link_;
     vm_state *vm_ = nullptr;
     std::vector<uint16_t> seen_[3]; // the memory as the remote machine has it
 };
+
+// Runs the call in `arguments` (the call byte first) on the bare VM `vm`:
+// its events to the VM's callbacks, its changes into `vm`; returns its
+// result (remote_vm.cpp).
+uint16_t call_vm(vm_state *vm, const Writer &arguments);
 
 // Stops the test with `message` (a broken remote machine is no test result).
 [[noreturn]] void fail(const std::string &message);

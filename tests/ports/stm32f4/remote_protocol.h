@@ -46,13 +46,17 @@ enum remote_command {
 enum remote_status {
     REMOTE_OK = 0,
     REMOTE_BAD_REQUEST = 1,
-    REMOTE_EVENTS_OVERFLOW = 2, /* the call caused more than the image can report */
-    REMOTE_GUARDS_BROKEN = 3,   /* the VM wrote outside its arrays on the target */
+    REMOTE_EVENTS_OVERFLOW = 2,  /* the call caused more than the image can report */
+    REMOTE_GUARDS_BROKEN = 3,    /* the VM wrote outside its arrays on the target */
+    REMOTE_ANSWER_CONTINUES = 4, /* a call's events so far, sent ahead by an image with
+                                    little RAM (the dsPIC30F's); the answer follows, these
+                                    events before its own */
 };
 
 /* REMOTE_OPEN_VM: the native table. */
 enum remote_natives {
     REMOTE_NATIVES_HARNESS = 0, /* tests/support/vm_harness.hpp's twelve */
+    REMOTE_NATIVES_EPUCK = 1,   /* the standard natives then the DSP ones (the dsPIC30F's image) */
 };
 
 /* REMOTE_OPEN_NODE: the description, as tests/node/node_harness.cpp's presets. */
@@ -78,6 +82,8 @@ enum remote_call {
     REMOTE_VM_BREAKPOINT_CLEAR = 13, /* pc */
     REMOTE_VM_BREAKPOINT_CLEAR_ALL = 14,
     REMOTE_VM_EVENT_ADDRESS = 16, /* event -> address */
+    REMOTE_VM_CALL_NATIVE = 17,   /* native, pc, count, words: the native called directly
+                                     inside a running event -> 1 (the dsPIC30F's image) */
     /* node.h */
     REMOTE_NODE_RECEIVE = 32,      /* now (u32), count, bytes -> taken */
     REMOTE_NODE_RECEIVE_BYTE = 33, /* now (u32), byte -> taken */

@@ -63,13 +63,7 @@ uint8_t dispatch_vm_events(vm_state *vm, Reader &reader)
 
 uint16_t call(vm_state *vm, const Writer &arguments)
 {
-    uint16_t result;
-    Bytes answer = RemoteMachine::instance().call(arguments, &result);
-    Reader reader{ answer, 2 };
-    if (dispatch_vm_events(vm, reader) != REMOTE_EVENT_END)
-        fail("a bare VM sent a node's event");
-    RemoteMachine::instance().take_changes(reader);
-    return result;
+    return qemu_test::call_vm(vm, arguments);
 }
 
 uint16_t call(vm_state *vm, uint8_t which)
@@ -96,6 +90,17 @@ bool is_harness_table(const vm_native_table *natives)
 }
 
 } // namespace
+
+uint16_t qemu_test::call_vm(vm_state *vm, const Writer &arguments)
+{
+    uint16_t result;
+    Bytes answer = RemoteMachine::instance().call(arguments, &result);
+    Reader reader{ answer, 2 };
+    if (dispatch_vm_events(vm, reader) != REMOTE_EVENT_END)
+        fail("a bare VM sent a node's event");
+    RemoteMachine::instance().take_changes(reader);
+    return result;
+}
 
 extern "C" {
 
