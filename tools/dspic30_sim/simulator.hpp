@@ -27,6 +27,8 @@ enum class Outcome : uint8_t {
     trap_reset_storm,    // the chip kept resetting on traps
     illegal_instruction, // the PC reached a word that is no instruction
     wall_clock,          // the wall-clock watchdog fired
+    power_cut,           // the NVM operation chosen for a power cut began
+    interrupted,         // the caller's between-slices hook asked to stop (a signal)
 };
 
 // The words of `outcome` ("cycle limit", "EXIT line", ...).
@@ -36,6 +38,12 @@ struct RunLimits {
     uint64_t cycles = never;        // instruction cycles
     double seconds = 0;             // wall-clock limit; 0 = none
     bool stop_at_exit_line = false; // stop at "EXIT n" / "ABORT" on UART1
+    // The cycles run between two calls of `between_slices` and two looks
+    // at the wall clock.
+    uint64_t slice_cycles = uint64_t{ 1 } << 22;
+    // Called after each slice (the TCP link, pacing to the wall clock);
+    // returning false stops the run (Outcome::interrupted). Empty = none.
+    std::function<bool()> between_slices;
 };
 
 struct RunResult {
