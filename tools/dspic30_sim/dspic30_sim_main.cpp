@@ -59,7 +59,8 @@ the program sets; --input-after holds standard input back until a given
 cycle, as a host that speaks only later (after a bootloader's wait, say).
 With --uart1 tcp:PORT, UART1 is a TCP server on 127.0.0.1:PORT (0: a free
 port), announced on standard output as "dspic30-sim: UART1 on
-tcp:localhost;PORT": the robot is an Aseba node for the console, Studio or
+tcp:localhost;PORT", and each client's arrival and departure on standard
+error with the cycle: the robot is an Aseba node for the console, Studio or
 asebamassloader, as over its Bluetooth link. One client at a time: a second
 one is connected by the system but served only once the first leaves; with
 none, what the robot sends is lost. Simulated time then keeps pace with the
@@ -371,7 +372,14 @@ int main(int argc, char **argv)
         std::fflush(stdout);
         limits.slice_cycles = tcp_slice_cycles;
         limits.between_slices = [&] {
+            const bool was_connected = link->connected();
             link->service(0);
+            if (link->connected() != was_connected)
+                std::fprintf(stderr,
+                             "dspic30-sim: client %s at cycle %llu (%.3f s)\n",
+                             was_connected ? "gone" : "connected",
+                             static_cast<unsigned long long>(cpu.cycles()),
+                             static_cast<double>(cpu.cycles()) / chip_cycles_per_second);
             const auto wait = pace.wait_at(cpu.cycles());
             if (wait > WallClockPace::Clock::duration::zero())
                 std::this_thread::sleep_for(wait);
