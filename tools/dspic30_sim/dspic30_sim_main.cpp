@@ -370,8 +370,7 @@ int main(int argc, char **argv)
     if (link) {
         std::printf("dspic30-sim: UART1 on tcp:localhost;%u\n", unsigned(link->port()));
         std::fflush(stdout);
-        limits.slice_cycles = tcp_slice_cycles;
-        limits.between_slices = [&] {
+        simulator.set_between_slices(tcp_slice_cycles, [&] {
             const bool was_connected = link->connected();
             link->service(0);
             if (link->connected() != was_connected)
@@ -384,9 +383,9 @@ int main(int argc, char **argv)
             if (wait > WallClockPace::Clock::duration::zero())
                 std::this_thread::sleep_for(wait);
             return stop_signal == 0;
-        };
+        });
     } else {
-        limits.between_slices = [] { return stop_signal == 0; };
+        simulator.set_between_slices(uint64_t{ 1 } << 22, [] { return stop_signal == 0; });
     }
     const RunResult result = simulator.run(limits);
     if (link)

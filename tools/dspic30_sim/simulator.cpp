@@ -98,8 +98,8 @@ RunResult Simulator::run(const RunLimits &limits)
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     for (;;) {
-        const uint64_t target = limits.cycles - cpu_.cycles() > limits.slice_cycles
-                                  ? cpu_.cycles() + limits.slice_cycles
+        const uint64_t target = limits.cycles - cpu_.cycles() > slice_cycles_
+                                  ? cpu_.cycles() + slice_cycles_
                                   : limits.cycles;
         const StopReason reason = cpu_.run(target);
         if (line_outcome_) {
@@ -127,7 +127,7 @@ RunResult Simulator::run(const RunLimits &limits)
             result.outcome = Outcome::wall_clock;
             break;
         }
-        if (limits.between_slices && !limits.between_slices()) {
+        if (between_slices_ && !between_slices_()) {
             result.outcome = Outcome::interrupted;
             break;
         }

@@ -38,12 +38,6 @@ struct RunLimits {
     uint64_t cycles = never;        // instruction cycles
     double seconds = 0;             // wall-clock limit; 0 = none
     bool stop_at_exit_line = false; // stop at "EXIT n" / "ABORT" on UART1
-    // The cycles run between two calls of `between_slices` and two looks
-    // at the wall clock.
-    uint64_t slice_cycles = uint64_t{ 1 } << 22;
-    // Called after each slice (the TCP link, pacing to the wall clock);
-    // returning false stops the run (Outcome::interrupted). Empty = none.
-    std::function<bool()> between_slices;
 };
 
 struct RunResult {
@@ -71,6 +65,16 @@ class Simulator
 
     RunResult run(const RunLimits &limits);
 
+    // Calls `hook` after each slice of `slice_cycles` of a run (the TCP
+    // link, pacing to the wall clock); the hook returning false stops the
+    // run (Outcome::interrupted). Without one, a run looks at the wall
+    // clock every 2^22 cycles.
+    void set_between_slices(uint64_t slice_cycles, std::function<bool()> hook)
+    {
+        slice_cycles_ = slice_cycles;
+        between_slices_ = std::move(hook);
+    }
+
     Cpu &cpu()
     {
         return cpu_;
@@ -88,6 +92,8 @@ class Simulator
     std::optional<Outcome> line_outcome_;
     int exit_status_ = 0;
     RunResult *current_ = nullptr;
+    uint64_t slice_cycles_ = uint64_t{ 1 } << 22;
+    std::function<bool()> between_slices_;
 };
 
 } // namespace aseba::dspic30
