@@ -86,6 +86,10 @@ class Machine
     {
         return cpu().read_data(address);
     }
+    GpioPorts &gpio()
+    {
+        return simulator_.gpio();
+    }
 
   private:
     std::deque<int> input_;
@@ -722,6 +726,47 @@ done:   bra done
     EXPECT_GT(m.cpu().w(2), 0x0040);
     EXPECT_LT(m.cpu().w(2), 0x0060);
     EXPECT_EQ(m.cpu().w(4) & 0x00C0, 0);
+}
+
+// The I/O ports as the family reference manual's I/O Ports section gives
+// them, on the implemented bits of fact sheet §2.5 (p30F6014A.inc): after a
+// reset every pin is an input (TRIS all ones on implemented bits, 0
+// elsewhere); a PORT write goes to the latch; PORT reads the latch on
+// outputs and the outside level on inputs; unimplemented bits (and the
+// absent port E) read 0; a RESET instruction makes every pin an input again.
+TEST(Gpio, TrisPortLatch)
+{
+    Machine m(R"(
+start:  mov #0xFF3F, w0
+        mov w0, 0x02C0          ; TRISA: RA6, RA7 outputs
+        mov #0xFFFF, w0
+        mov w0, 0x02C2          ; PORTA: written to LATA
+written:
+        bclr 0x02C4, #7         ; LATA.7
+cleared:
+        mov #0xFFFF, w0
+        mov w0, 0x02D8          ; port E's TRIS address: nothing there
+        reset
+)");
+    constexpr uint16_t trisa = 0x02C0, porta = 0x02C2, lata = 0x02C4;
+    EXPECT_EQ(m.data(trisa), 0xF6C0) << "RA6, RA7, RA9, RA10, RA12-RA15 inputs";
+    EXPECT_EQ(m.data(0x02C6), 0xFFFF) << "TRISB";
+    EXPECT_EQ(m.data(0x02CC), 0xE01E) << "TRISC";
+    EXPECT_EQ(m.data(0x02D2), 0xFFFF) << "TRISD";
+    EXPECT_EQ(m.data(0x02DE), 0x01FF) << "TRISF";
+    EXPECT_EQ(m.data(0x02E4), 0xF3CF) << "TRISG";
+    m.gpio().set_input_levels('A', 0x1040); // RA12 high; RA6 driven by the chip
+    ASSERT_TRUE(m.run_to("written"));
+    EXPECT_EQ(m.data(trisa), 0xF600);
+    EXPECT_EQ(m.data(lata), 0xF6C0) << "the latch holds the implemented bits written to PORTA";
+    EXPECT_EQ(m.data(porta), 0x10C0) << "outputs RA6, RA7 from the latch, input RA12 outside";
+    ASSERT_TRUE(m.run_to("cleared"));
+    EXPECT_EQ(m.data(porta), 0x1040);
+    EXPECT_EQ(m.gpio().pins('A'), 0x1040);
+    ASSERT_TRUE(m.run_to("start")); // through the RESET instruction, before the program again
+    EXPECT_EQ(m.data(0x02D8), 0) << "port E does not exist";
+    EXPECT_EQ(m.data(trisa), 0xF6C0) << "inputs again after the reset";
+    EXPECT_EQ(m.data(porta), 0x1040) << "RA6, an input again, shows the outside level";
 }
 
 } // namespace

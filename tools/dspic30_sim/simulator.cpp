@@ -36,10 +36,12 @@ Simulator::Simulator(std::function<void(uint8_t)> output, std::function<int()> i
       [this](uint8_t b) { uart_byte(b); },
       std::move(input))
   , timers_(cpu_)
+  , gpio_(cpu_)
   , output_(std::move(output))
 {
     uart1_.attach();
     timers_.attach();
+    gpio_.attach();
     cpu_.set_trap_observer([this](const TrapRecord &record) {
         if (!current_)
             return;

@@ -1,11 +1,13 @@
-// A dsPIC30F6014A with UART1 on host byte streams and timers 1-5, as dspic30-sim and the
-// tests run it: load an image, run it from reset under a cycle limit and a
-// wall-clock watchdog, and stop at the line a test program prints at its end
-// ("EXIT n" or "ABORT", the convention of ../shared/vectors/gcc-torture).
+// A dsPIC30F6014A with UART1 on host byte streams, timers 1-5 and the I/O
+// ports, as dspic30-sim and the tests run it: load an image, run it from
+// reset under a cycle limit and a wall-clock watchdog, and stop at the line
+// a test program prints at its end ("EXIT n" or "ABORT", the convention of
+// ../shared/vectors/gcc-torture).
 
 #pragma once
 
 #include "tools/dspic30_sim/cpu.hpp"
+#include "tools/dspic30_sim/gpio.hpp"
 #include "tools/dspic30_sim/timers.hpp"
 #include "tools/dspic30_sim/uart.hpp"
 
@@ -79,6 +81,10 @@ class Simulator
     {
         return cpu_;
     }
+    GpioPorts &gpio()
+    {
+        return gpio_;
+    }
 
   private:
     void uart_byte(uint8_t byte);
@@ -86,6 +92,7 @@ class Simulator
     Cpu cpu_;
     Uart uart1_;
     Timers timers_;
+    GpioPorts gpio_;
     std::function<void(uint8_t)> output_;
     std::string line_;
     bool watching_exit_ = false;
