@@ -90,6 +90,10 @@ class Machine
     {
         return simulator_.gpio();
     }
+    Adc &adc()
+    {
+        return simulator_.adc();
+    }
 
   private:
     std::deque<int> input_;
@@ -767,6 +771,91 @@ cleared:
     EXPECT_EQ(m.data(0x02D8), 0) << "port E does not exist";
     EXPECT_EQ(m.data(trisa), 0xF6C0) << "inputs again after the reset";
     EXPECT_EQ(m.data(porta), 0x1040) << "RA6, an input again, shows the outside level";
+}
+
+// Fact sheet §2.3 (the 12-bit A/D section of the family reference manual):
+// a manual conversion. Setting SAMP samples CH0SA's input; clearing it
+// starts a conversion of 14 Tad, Tad = Tcy x (ADCS + 1) / 2 (ADCS = 19:
+// 10 cycles); the result lands in ADCBUF0, DONE is set, and with SMPI = 0
+// the interrupt flag (IFS0.ADIF, bit 11) with it.
+TEST(Adc, ManualConversion)
+{
+    Machine m(R"(
+start:  clr 0x02A8              ; ADPCFG: every input analog
+        mov #19, w0
+        mov w0, 0x02A4          ; ADCON3: ADCS = 19
+        mov #5, w0
+        mov w0, 0x02A6          ; ADCHS: CH0SA = AN5
+        mov #0x8000, w0
+        mov w0, 0x02A0          ; ADCON1: ADON, manual sampling and conversion
+        bset 0x02A0, #1         ; SAMP
+        nop
+        nop
+converting:
+        bclr 0x02A0, #1         ; ending the sampling starts the conversion
+wait:   btss 0x02A0, #0         ; DONE
+        bra wait
+converted:
+        mov 0x0280, w1          ; ADCBUF0
+done:   bra done
+)");
+    m.adc().set_input(5, 0x0ABC);
+    m.adc().set_input(4, 0x0123);
+    ASSERT_TRUE(m.run_to("converting"));
+    const uint64_t start = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("converted"));
+    const uint64_t took = m.cpu().cycles() - start;
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_EQ(m.cpu().w(1), 0x0ABC);
+    EXPECT_NEAR(static_cast<double>(took), 140.0, 6.0) << "14 Tad of 10 cycles";
+    EXPECT_NE(m.data(0x0084) & 0x0800, 0) << "ADIF";
+}
+
+// Fact sheet §2.3, the e-puck library's scan: SSRC = 111 and ASAM sample
+// and convert on their own, CSCNA takes the inputs of ADCSSL in ascending
+// order into ADCBUF0 upward, and the interrupt comes after SMPI + 1
+// conversions, every 3 x (SAMC 1 + 14) Tad = 450 cycles at ADCS = 19.
+TEST(Adc, ScanWithInterrupt)
+{
+    Machine m(R"(
+start:  clr 0x02A8              ; ADPCFG: every input analog
+        mov #0x0124, w0
+        mov w0, 0x02AA          ; ADCSSL: AN2, AN5, AN8
+        mov #0x0113, w0
+        mov w0, 0x02A4          ; ADCON3: SAMC = 1, ADCS = 19
+        mov #0x0408, w0
+        mov w0, 0x02A2          ; ADCON2: CSCNA, SMPI = 2
+        mov #0x0800, w0
+        mov w0, 0x008C          ; IEC0.ADIE
+        mov #0x00E4, w0
+        mov w0, 0x02A0          ; ADCON1: SSRC = 111, ASAM
+        bset 0x02A0, #15        ; ADON
+on:     mov #3000, w1
+wait:   dec w1, w1
+        bra nz, wait
+off:    clr 0x02A0
+done:   bra done
+adc:    inc w5, w5
+        mov 0x0280, w8
+        mov 0x0282, w9
+        mov 0x0284, w10
+        bclr 0x0084, #11
+        retfie
+)");
+    m.vector(8 + 11, "adc");
+    m.adc().set_input(2, 100);
+    m.adc().set_input(5, 200);
+    m.adc().set_input(8, 300);
+    m.adc().set_input(3, 999); // not scanned
+    ASSERT_TRUE(m.run_to("on"));
+    const uint64_t on = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("off"));
+    const uint64_t counted = m.cpu().cycles() - on;
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_EQ(m.cpu().w(8), 100);
+    EXPECT_EQ(m.cpu().w(9), 200);
+    EXPECT_EQ(m.cpu().w(10), 300);
+    EXPECT_NEAR(m.cpu().w(5), static_cast<double>(counted) / 450.0, 1.0) << counted << " cycles";
 }
 
 } // namespace

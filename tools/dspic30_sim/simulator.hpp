@@ -1,11 +1,12 @@
-// A dsPIC30F6014A with UART1 on host byte streams, timers 1-5 and the I/O
-// ports, as dspic30-sim and the tests run it: load an image, run it from
+// A dsPIC30F6014A with UART1 on host byte streams, timers 1-5, the I/O
+// ports and the ADC, as dspic30-sim and the tests run it: load an image, run it from
 // reset under a cycle limit and a wall-clock watchdog, and stop at the line
 // a test program prints at its end ("EXIT n" or "ABORT", the convention of
 // ../shared/vectors/gcc-torture).
 
 #pragma once
 
+#include "tools/dspic30_sim/adc.hpp"
 #include "tools/dspic30_sim/cpu.hpp"
 #include "tools/dspic30_sim/gpio.hpp"
 #include "tools/dspic30_sim/timers.hpp"
@@ -85,6 +86,10 @@ class Simulator
     {
         return gpio_;
     }
+    Adc &adc()
+    {
+        return adc_;
+    }
 
   private:
     void uart_byte(uint8_t byte);
@@ -93,6 +98,7 @@ class Simulator
     Uart uart1_;
     Timers timers_;
     GpioPorts gpio_;
+    Adc adc_;
     std::function<void(uint8_t)> output_;
     std::string line_;
     bool watching_exit_ = false;
