@@ -11,9 +11,9 @@ takes one. Never bricked.
               application (the factory image: the bootloader skips rows that
               already hold their page and rewrites the descriptor): every K.
   flash-new   the same into a robot holding only the bootloader (every row
-              erased and written): a spread of K over the whole flashing
-              (each cut costs a flashing up to it), then a re-flash after
-              one of the cuts.
+              erased and written): K = 1, a third, two thirds, the last
+              two (each cut costs a flashing up to it, so a spread), then a
+              re-flash after the cut at a third.
   store       `aseba save` of a program over a stored one: half of the K (an
               erase and a write in every four, and the last two).
 
@@ -103,7 +103,7 @@ def flash_new_part(results, folder):
     console(node, "flash", "--node", "1", APPLICATION_IMAGE, timeout=60)
     total = nvm_operations(node.stop()[1]) or 0
     results.check(total > 700, f"a whole flashing takes {total} NVM operations (two a row)")
-    cuts = sorted({1, 2, total // 4, total // 2, 3 * total // 4, total - 1, total})
+    cuts = sorted({1, total // 3, 2 * total // 3, total - 1, total})
     reflashed = False
     for cut in cuts:
         memory = os.path.join(folder, f"bare-cut-{cut}.memory")
@@ -113,7 +113,7 @@ def flash_new_part(results, folder):
                       f"bootloader-only robot: the power is cut at operation {cut} of {total}",
                       str(ended))
         as_node = check_boot(results, memory, f"bootloader-only robot cut at {cut}")
-        if not as_node and not reflashed and cut >= total // 2:
+        if not as_node and not reflashed and cut >= total // 3:
             reflashed = True
             node = Node(memory, None, SPEED)
             try:

@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <deque>
 #include <string>
 
@@ -93,6 +94,10 @@ class Machine
     Adc &adc()
     {
         return simulator_.adc();
+    }
+    I2cMaster &i2c()
+    {
+        return simulator_.i2c();
     }
 
   private:
@@ -856,6 +861,131 @@ adc:    inc w5, w5
     EXPECT_EQ(m.cpu().w(9), 200);
     EXPECT_EQ(m.cpu().w(10), 300);
     EXPECT_NEAR(m.cpu().w(5), static_cast<double>(counted) / 450.0, 1.0) << counted << " cycles";
+}
+
+// A slave with 256 registers as I2C register devices work (the e-puck's
+// camera and accelerometer): after its address for writing, the first byte
+// is the register, the next ones written from it upward; a read returns the
+// registers from it upward.
+class RegisterDevice : public I2cDevice
+{
+  public:
+    std::array<uint8_t, 256> registers{};
+    int starts = 0, stops = 0;
+
+    void start(bool reading) override
+    {
+        ++starts;
+        pointer_set_ = reading;
+    }
+    bool receive(uint8_t byte) override
+    {
+        if (!pointer_set_) {
+            pointer_ = byte;
+            pointer_set_ = true;
+        } else {
+            registers[pointer_++] = byte;
+        }
+        return true;
+    }
+    uint8_t send() override
+    {
+        return registers[pointer_++];
+    }
+    void stop() override
+    {
+        ++stops;
+    }
+
+  private:
+    uint8_t pointer_ = 0;
+    bool pointer_set_ = false;
+};
+
+// Fact sheet §2.4 (the family reference manual's I2C section, master mode):
+// each step started by an I2CCON bit, or by writing I2CTRN, ends with the
+// bit (or TBF and TRSTAT) cleared and the MI2C flag (IFS0 bit 14) set; a
+// byte sent takes 9 bit times with its acknowledge; ACKSTAT tells whether
+// the slave acknowledged. The program writes two registers, reads them
+// back with a repeated start, then addresses a device that is not there.
+TEST(I2c, MasterWritesReadsAndMeetsANack)
+{
+    Machine m(R"(
+        ; w8 = I2CCON 0x0206, w9 = I2CSTAT 0x0208; each step then waits for MI2C
+start:  mov #9, w0
+        mov w0, 0x0204          ; I2CBRG = 9: a bit time of 10 cycles
+        mov #0x8000, w0
+        mov w0, 0x0206          ; I2CEN
+        call start_bit
+        mov #0x3C, w0           ; device 0x1E, write
+        call send
+        mov #0x10, w0           ; register 0x10
+        call send
+        mov #0xA5, w0
+        call send
+        mov #0x5A, w0
+        call send
+        call stop_bit
+        call start_bit
+        mov #0x3C, w0
+        call send
+        mov #0x10, w0
+        call send
+        bset 0x0206, #1         ; RSEN
+        call wait_flag
+        mov #0x3D, w0           ; device 0x1E, read
+        call send
+        bset 0x0206, #3         ; RCEN
+        call wait_flag
+        mov 0x0200, w4          ; I2CRCV
+        bclr 0x0206, #5         ; ACKDT = 0: acknowledge
+        bset 0x0206, #4         ; ACKEN
+        call wait_flag
+        bset 0x0206, #3
+        call wait_flag
+        mov 0x0200, w5
+        bset 0x0206, #5         ; NACK the last byte
+        bset 0x0206, #4
+        call wait_flag
+        call stop_bit
+        call start_bit
+timed:  mov #0x90, w0           ; device 0x48: nobody there
+        call send
+nacked: mov 0x0208, w6          ; I2CSTAT after it
+        call stop_bit
+done:   bra done
+start_bit:
+        bset 0x0206, #0         ; SEN
+        bra wait_flag
+stop_bit:
+        bset 0x0206, #2         ; PEN
+        bra wait_flag
+send:   mov w0, 0x0202          ; I2CTRN
+wait_flag:
+        btss 0x0084, #14        ; IFS0.MI2CIF
+        bra wait_flag
+        bclr 0x0084, #14
+        inc w7, w7              ; steps completed
+        return
+)");
+    RegisterDevice device;
+    m.i2c().connect(0x1E, device);
+    ASSERT_TRUE(m.run_to("timed"));
+    EXPECT_EQ(device.registers[0x10], 0xA5);
+    EXPECT_EQ(device.registers[0x11], 0x5A);
+    EXPECT_EQ(m.cpu().w(4), 0xA5) << "read back with a repeated start";
+    EXPECT_EQ(m.cpu().w(5), 0x5A);
+    EXPECT_EQ(device.starts, 3);
+    EXPECT_EQ(device.stops, 2);
+    const uint64_t before = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("nacked"));
+    EXPECT_NEAR(static_cast<double>(m.cpu().cycles() - before), 90.0, 12.0)
+      << "a byte and its acknowledge: 9 bit times of 10 cycles";
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_NE(m.cpu().w(6) & 0x8000, 0) << "ACKSTAT: not acknowledged";
+    EXPECT_EQ(m.cpu().w(6) & 0x4001, 0) << "TRSTAT and TBF clear";
+    EXPECT_EQ(m.cpu().w(7), 19) << "every step raised MI2C";
+    EXPECT_EQ(m.data(0x0206) & 0x001F, 0) << "every step bit cleared";
 }
 
 } // namespace

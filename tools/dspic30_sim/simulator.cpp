@@ -38,12 +38,14 @@ Simulator::Simulator(std::function<void(uint8_t)> output, std::function<int()> i
   , timers_(cpu_)
   , gpio_(cpu_)
   , adc_(cpu_)
+  , i2c_(cpu_)
   , output_(std::move(output))
 {
     uart1_.attach();
     timers_.attach();
     gpio_.attach();
     adc_.attach();
+    i2c_.attach();
     cpu_.set_trap_observer([this](const TrapRecord &record) {
         if (!current_)
             return;

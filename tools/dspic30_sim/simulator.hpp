@@ -1,7 +1,7 @@
 // A dsPIC30F6014A with UART1 on host byte streams, timers 1-5, the I/O
-// ports and the ADC, as dspic30-sim and the tests run it: load an image, run it from
-// reset under a cycle limit and a wall-clock watchdog, and stop at the line
-// a test program prints at its end ("EXIT n" or "ABORT", the convention of
+// ports, the ADC and the I2C master, as dspic30-sim and the tests run it: load an image, run it
+// from reset under a cycle limit and a wall-clock watchdog, and stop at the line a test program
+// prints at its end ("EXIT n" or "ABORT", the convention of
 // ../shared/vectors/gcc-torture).
 
 #pragma once
@@ -9,6 +9,7 @@
 #include "tools/dspic30_sim/adc.hpp"
 #include "tools/dspic30_sim/cpu.hpp"
 #include "tools/dspic30_sim/gpio.hpp"
+#include "tools/dspic30_sim/i2c.hpp"
 #include "tools/dspic30_sim/timers.hpp"
 #include "tools/dspic30_sim/uart.hpp"
 
@@ -90,6 +91,10 @@ class Simulator
     {
         return adc_;
     }
+    I2cMaster &i2c()
+    {
+        return i2c_;
+    }
 
   private:
     void uart_byte(uint8_t byte);
@@ -99,6 +104,7 @@ class Simulator
     Timers timers_;
     GpioPorts gpio_;
     Adc adc_;
+    I2cMaster i2c_;
     std::function<void(uint8_t)> output_;
     std::string line_;
     bool watching_exit_ = false;
