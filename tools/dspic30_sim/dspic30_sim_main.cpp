@@ -48,9 +48,9 @@ constexpr const char *details =
   R"(Runs IMAGE.hex on a simulated dsPIC30F6014A (the e-puck's chip) from
 reset: the CPU and its DSP engine, 48 K words of flash, 8 KB of RAM, the
 data EEPROM, the NVM controller, traps, interrupts, the watchdog, timers
-1-5, UART1, the I/O ports and the 12-bit ADC (inputs all at 0); no other
-peripheral yet (docs/dspic30-sim.md says what is modelled). The image is
-read as
+1-5, UART1, the I/O ports and the 12-bit ADC (inputs all at 0), the I2C
+master (no device on the bus); no other peripheral yet (docs/dspic30-sim.md
+says what is modelled). The image is read as
 pic30-elf-bin2hex writes it: byte address = 2 x PC address, 4 bytes per
 instruction word, the fourth 0.
 
