@@ -140,12 +140,12 @@ $(DSPIC30_FACTORY_TEST): tests/dspic30_sim/factory_image_test.py $(BUILD)/host/b
 # dspic30-sim with UART1 on a TCP port, flashed by the console and loaded by
 # asebamassloader (deployment_test.py), and switched on again after power
 # cuts at NVM operations of a flashing and of a program store
-# (power_cut_test.py, in three parts of under a minute each).
+# (power_cut_test.py, in four parts of under a minute each).
 DSPIC30_DEPLOYMENT_INPUTS := tests/dspic30_sim/sim_node.py $(BUILD)/host/bin/dspic30-sim \
                              $(BUILD)/host/bin/aseba $(DSPIC30_OUT)/epuck-aseba-factory.hex \
                              $(DSPIC30_OUT)/epuck-aseba.hex
 DSPIC30_DEPLOYMENT_TESTS := $(BUILD)/host-sanitize/tests/dspic30_deployment_test \
-                            $(foreach p,flash-same flash-new store,$(BUILD)/host-sanitize/tests/dspic30_power_cut_$(p)_test)
+                            $(foreach p,flash-same flash-new store-odd store-even,$(BUILD)/host-sanitize/tests/dspic30_power_cut_$(p)_test)
 TEST_SCRIPTS += $(DSPIC30_DEPLOYMENT_TESTS)
 # $(1): the script, $(2): its argument.
 define DSPIC30_SCRIPT_WRAPPER
