@@ -48,9 +48,9 @@ constexpr const char *details =
   R"(Runs IMAGE.hex on a simulated dsPIC30F6014A (the e-puck's chip) from
 reset: the CPU and its DSP engine, 48 K words of flash, 8 KB of RAM, the
 data EEPROM, the NVM controller, traps, interrupts, the watchdog, timers
-1-5, UART1, the I/O ports and the 12-bit ADC (inputs all at 0), the I2C
-master (no device on the bus); no other peripheral yet (docs/dspic30-sim.md
-says what is modelled). The image is read as
+1-5, UART1, the I/O ports (inputs all low), the 12-bit ADC (inputs all
+at 0) and the I2C master (no device on the bus); no other peripheral yet
+(docs/dspic30-sim.md says what is modelled). The image is read as
 pic30-elf-bin2hex writes it: byte address = 2 x PC address, 4 bytes per
 instruction word, the fourth 0.
 
@@ -79,13 +79,12 @@ the K-th NVM operation (flash row erase or write, EEPROM erase or write,
 configuration word) begins: that operation reaches the first half of its
 row only (a single word: not at all).
 
-The run stops after --cycles instruction cycles, when the
-wall-clock watchdog fires (--timeout), when the chip keeps resetting on
-traps, at a word that is no instruction (--illegal stop), on Ctrl-C or
-SIGTERM, or with
+The run stops after --cycles instruction cycles, when the wall-clock
+watchdog fires (--timeout), when the chip keeps resetting on traps, at a
+word that is no instruction (--illegal stop), on Ctrl-C or SIGTERM, or with
 --until-exit when UART1 prints a line "EXIT n" or "ABORT" (the convention
-of the GCC torture tests). At 14.7456 MHz, one second of the robot's time is
-14,745,600 cycles.
+of the GCC torture tests). At 14.7456 MHz, one second of the robot's time
+is 14,745,600 cycles.
 
 Exit status: 0 when the run reached its cycle limit, printed "EXIT 0", was
 stopped by Ctrl-C or SIGTERM or by its power cut; 1 when it printed
