@@ -22,7 +22,7 @@ ram_goal_bytes=4096 # the paper's RAM for the e-puck firmware
 echo "bench: building" >&2
 make --no-print-directory BUILD="$build" "$bin/bench-vm" "$bin/bench-vm-switch" \
     "$bin/avr-step-counter" "$bin/bench-compiler" "$bin/bench-node" "$bin/bench-dsp" \
-    "$bin/bench-dspic30-sim" \
+    "$bin/bench-dspic30-sim" "$bin/dspic30-sim" "$bin/aseba" \
     "$bin/epuck-emu" >&2
 
 ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b + 0 == 0) print "-"; else printf "%.2f", a / b }'; }
@@ -181,6 +181,28 @@ robots_per_core=$(awk -v c="$sim_many" 'BEGIN { printf "%.0f", 1 / c }')
 echo "bench: dsPIC30F simulator" >&2
 dspic30_sim_mips=$("$bin/bench-dspic30-sim" 1000000000 | awk '{ print $2 }')
 
+# `aseba flash` of the application into one simulated e-puck (dspic30-sim,
+# UART1 on a TCP port, the firmware's 115,200 baud, paced to the wall clock)
+# that holds only the bootloader, so that every page is erased and written.
+# The robot's seconds come from the cycles at which the console's
+# connection came and went (the simulator's log); both include the
+# console's first second of waiting for the robot to answer as a node.
+echo "bench: aseba flash into dspic30-sim" >&2
+"$bin/dspic30-sim" --uart1 tcp:0 --memory "$scratch/flash.memory" \
+    "$build/dspic30/epuck-aseba-bootloader.hex" >"$scratch/flash.out" 2>"$scratch/flash.err" &
+flash_simulator=$!
+for _ in $(seq 100); do grep -q 'tcp:localhost;' "$scratch/flash.out" && break; sleep 0.1; done
+flash_port=$(sed -n 's/.*tcp:localhost;//p' "$scratch/flash.out")
+sleep 1 # the bootloader's second: no application to start, it waits
+flash_start=$(date +%s.%N)
+"$bin/aseba" -t "tcp:localhost;$flash_port" flash --node 1 "$build/dspic30/epuck-aseba.hex" >&2
+flash_end=$(date +%s.%N)
+kill -TERM "$flash_simulator"
+wait "$flash_simulator"
+flash_wall=$(awk -v a="$flash_start" -v b="$flash_end" 'BEGIN { printf "%.1f", b - a }')
+flash_robot=$(awk '/client connected at cycle/ { from = $6 } /client gone at cycle/ { to = $6 }
+    END { printf "%.1f", (to - from) / 14745600 }' "$scratch/flash.err")
+
 echo "bench: arena" >&2
 arena_goal_factor=10      # at 100 robots, every run (issues 7 and 17)
 arena_goal_factor_many=0.5 # at 1000 robots (issue 17)
@@ -317,6 +339,7 @@ table=$(
     echo "| STM32F4 image (make stm32f4, QEMU board, -O2): code / constant data / RAM, bytes | $stm32f4_code / $stm32f4_constant / $stm32f4_ram | - | - | |"
     echo "| VM on the Cortex-M4 (QEMU -icount): instructions per bytecode step, computed goto | $stm32f4_per_step | - | - | |"
     echo "| dsPIC30F simulator (tools/dspic30_sim): million simulated instructions per second of one core, bench/dspic30_workload.c | $dspic30_sim_mips | - | - | ≥ 100 |"
+    echo "| dsPIC30F simulator: \`aseba flash\` of the application into one robot holding only its bootloader, UART1 on TCP at 115,200 baud, paced: seconds of the robot's clock / of the wall clock | $flash_robot / $flash_wall | - | - | |"
 )
 
 dspic_table=$(

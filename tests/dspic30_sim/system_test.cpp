@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <deque>
 #include <string>
 
@@ -85,6 +86,18 @@ class Machine
     uint16_t data(uint16_t address)
     {
         return cpu().read_data(address);
+    }
+    GpioPorts &gpio()
+    {
+        return simulator_.gpio();
+    }
+    Adc &adc()
+    {
+        return simulator_.adc();
+    }
+    I2cMaster &i2c()
+    {
+        return simulator_.i2c();
     }
 
   private:
@@ -722,6 +735,257 @@ done:   bra done
     EXPECT_GT(m.cpu().w(2), 0x0040);
     EXPECT_LT(m.cpu().w(2), 0x0060);
     EXPECT_EQ(m.cpu().w(4) & 0x00C0, 0);
+}
+
+// The I/O ports as the family reference manual's I/O Ports section gives
+// them, on the implemented bits of fact sheet §2.5 (p30F6014A.inc): after a
+// reset every pin is an input (TRIS all ones on implemented bits, 0
+// elsewhere); a PORT write goes to the latch; PORT reads the latch on
+// outputs and the outside level on inputs; unimplemented bits (and the
+// absent port E) read 0; a RESET instruction makes every pin an input again.
+TEST(Gpio, TrisPortLatch)
+{
+    Machine m(R"(
+start:  mov #0xFF3F, w0
+        mov w0, 0x02C0          ; TRISA: RA6, RA7 outputs
+        mov #0xFFFF, w0
+        mov w0, 0x02C2          ; PORTA: written to LATA
+written:
+        bclr 0x02C4, #7         ; LATA.7
+cleared:
+        mov #0xFFFF, w0
+        mov w0, 0x02D8          ; port E's TRIS address: nothing there
+        reset
+)");
+    constexpr uint16_t trisa = 0x02C0, porta = 0x02C2, lata = 0x02C4;
+    EXPECT_EQ(m.data(trisa), 0xF6C0) << "RA6, RA7, RA9, RA10, RA12-RA15 inputs";
+    EXPECT_EQ(m.data(0x02C6), 0xFFFF) << "TRISB";
+    EXPECT_EQ(m.data(0x02CC), 0xE01E) << "TRISC";
+    EXPECT_EQ(m.data(0x02D2), 0xFFFF) << "TRISD";
+    EXPECT_EQ(m.data(0x02DE), 0x01FF) << "TRISF";
+    EXPECT_EQ(m.data(0x02E4), 0xF3CF) << "TRISG";
+    m.gpio().set_input_levels('A', 0x1040); // RA12 high; RA6 driven by the chip
+    ASSERT_TRUE(m.run_to("written"));
+    EXPECT_EQ(m.data(trisa), 0xF600);
+    EXPECT_EQ(m.data(lata), 0xF6C0) << "the latch holds the implemented bits written to PORTA";
+    EXPECT_EQ(m.data(porta), 0x10C0) << "outputs RA6, RA7 from the latch, input RA12 outside";
+    ASSERT_TRUE(m.run_to("cleared"));
+    EXPECT_EQ(m.data(porta), 0x1040);
+    EXPECT_EQ(m.gpio().pins('A'), 0x1040);
+    ASSERT_TRUE(m.run_to("start")); // through the RESET instruction, before the program again
+    EXPECT_EQ(m.data(0x02D8), 0) << "port E does not exist";
+    EXPECT_EQ(m.data(trisa), 0xF6C0) << "inputs again after the reset";
+    EXPECT_EQ(m.data(porta), 0x1040) << "RA6, an input again, shows the outside level";
+}
+
+// Fact sheet §2.3 (the 12-bit A/D section of the family reference manual):
+// a manual conversion. Setting SAMP samples CH0SA's input; clearing it
+// starts a conversion of 14 Tad, Tad = Tcy x (ADCS + 1) / 2 (ADCS = 19:
+// 10 cycles); the result lands in ADCBUF0, DONE is set, and with SMPI = 0
+// the interrupt flag (IFS0.ADIF, bit 11) with it.
+TEST(Adc, ManualConversion)
+{
+    Machine m(R"(
+start:  clr 0x02A8              ; ADPCFG: every input analog
+        mov #19, w0
+        mov w0, 0x02A4          ; ADCON3: ADCS = 19
+        mov #5, w0
+        mov w0, 0x02A6          ; ADCHS: CH0SA = AN5
+        mov #0x8000, w0
+        mov w0, 0x02A0          ; ADCON1: ADON, manual sampling and conversion
+        bset 0x02A0, #1         ; SAMP
+        nop
+        nop
+converting:
+        bclr 0x02A0, #1         ; ending the sampling starts the conversion
+wait:   btss 0x02A0, #0         ; DONE
+        bra wait
+converted:
+        mov 0x0280, w1          ; ADCBUF0
+done:   bra done
+)");
+    m.adc().set_input(5, 0x0ABC);
+    m.adc().set_input(4, 0x0123);
+    ASSERT_TRUE(m.run_to("converting"));
+    const uint64_t start = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("converted"));
+    const uint64_t took = m.cpu().cycles() - start;
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_EQ(m.cpu().w(1), 0x0ABC);
+    EXPECT_NEAR(static_cast<double>(took), 140.0, 6.0) << "14 Tad of 10 cycles";
+    EXPECT_NE(m.data(0x0084) & 0x0800, 0) << "ADIF";
+}
+
+// Fact sheet §2.3, the e-puck library's scan: SSRC = 111 and ASAM sample
+// and convert on their own, CSCNA takes the inputs of ADCSSL in ascending
+// order into ADCBUF0 upward, and the interrupt comes after SMPI + 1
+// conversions, every 3 x (SAMC 1 + 14) Tad = 450 cycles at ADCS = 19.
+TEST(Adc, ScanWithInterrupt)
+{
+    Machine m(R"(
+start:  clr 0x02A8              ; ADPCFG: every input analog
+        mov #0x0124, w0
+        mov w0, 0x02AA          ; ADCSSL: AN2, AN5, AN8
+        mov #0x0113, w0
+        mov w0, 0x02A4          ; ADCON3: SAMC = 1, ADCS = 19
+        mov #0x0408, w0
+        mov w0, 0x02A2          ; ADCON2: CSCNA, SMPI = 2
+        mov #0x0800, w0
+        mov w0, 0x008C          ; IEC0.ADIE
+        mov #0x00E4, w0
+        mov w0, 0x02A0          ; ADCON1: SSRC = 111, ASAM
+        bset 0x02A0, #15        ; ADON
+on:     mov #3000, w1
+wait:   dec w1, w1
+        bra nz, wait
+off:    clr 0x02A0
+done:   bra done
+adc:    inc w5, w5
+        mov 0x0280, w8
+        mov 0x0282, w9
+        mov 0x0284, w10
+        bclr 0x0084, #11
+        retfie
+)");
+    m.vector(8 + 11, "adc");
+    m.adc().set_input(2, 100);
+    m.adc().set_input(5, 200);
+    m.adc().set_input(8, 300);
+    m.adc().set_input(3, 999); // not scanned
+    ASSERT_TRUE(m.run_to("on"));
+    const uint64_t on = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("off"));
+    const uint64_t counted = m.cpu().cycles() - on;
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_EQ(m.cpu().w(8), 100);
+    EXPECT_EQ(m.cpu().w(9), 200);
+    EXPECT_EQ(m.cpu().w(10), 300);
+    EXPECT_NEAR(m.cpu().w(5), static_cast<double>(counted) / 450.0, 1.0) << counted << " cycles";
+}
+
+// A slave with 256 registers as I2C register devices work (the e-puck's
+// camera and accelerometer): after its address for writing, the first byte
+// is the register, the next ones written from it upward; a read returns the
+// registers from it upward.
+class RegisterDevice : public I2cDevice
+{
+  public:
+    std::array<uint8_t, 256> registers{};
+    int starts = 0, stops = 0;
+
+    void start(bool reading) override
+    {
+        ++starts;
+        pointer_set_ = reading;
+    }
+    bool receive(uint8_t byte) override
+    {
+        if (!pointer_set_) {
+            pointer_ = byte;
+            pointer_set_ = true;
+        } else {
+            registers[pointer_++] = byte;
+        }
+        return true;
+    }
+    uint8_t send() override
+    {
+        return registers[pointer_++];
+    }
+    void stop() override
+    {
+        ++stops;
+    }
+
+  private:
+    uint8_t pointer_ = 0;
+    bool pointer_set_ = false;
+};
+
+// Fact sheet §2.4 (the family reference manual's I2C section, master mode):
+// each step started by an I2CCON bit, or by writing I2CTRN, ends with the
+// bit (or TBF and TRSTAT) cleared and the MI2C flag (IFS0 bit 14) set; a
+// byte sent takes 9 bit times with its acknowledge; ACKSTAT tells whether
+// the slave acknowledged. The program writes two registers, reads them
+// back with a repeated start, then addresses a device that is not there.
+TEST(I2c, MasterWritesReadsAndMeetsANack)
+{
+    Machine m(R"(
+        ; w8 = I2CCON 0x0206, w9 = I2CSTAT 0x0208; each step then waits for MI2C
+start:  mov #9, w0
+        mov w0, 0x0204          ; I2CBRG = 9: a bit time of 10 cycles
+        mov #0x8000, w0
+        mov w0, 0x0206          ; I2CEN
+        call start_bit
+        mov #0x3C, w0           ; device 0x1E, write
+        call send
+        mov #0x10, w0           ; register 0x10
+        call send
+        mov #0xA5, w0
+        call send
+        mov #0x5A, w0
+        call send
+        call stop_bit
+        call start_bit
+        mov #0x3C, w0
+        call send
+        mov #0x10, w0
+        call send
+        bset 0x0206, #1         ; RSEN
+        call wait_flag
+        mov #0x3D, w0           ; device 0x1E, read
+        call send
+        bset 0x0206, #3         ; RCEN
+        call wait_flag
+        mov 0x0200, w4          ; I2CRCV
+        bclr 0x0206, #5         ; ACKDT = 0: acknowledge
+        bset 0x0206, #4         ; ACKEN
+        call wait_flag
+        bset 0x0206, #3
+        call wait_flag
+        mov 0x0200, w5
+        bset 0x0206, #5         ; NACK the last byte
+        bset 0x0206, #4
+        call wait_flag
+        call stop_bit
+        call start_bit
+timed:  mov #0x90, w0           ; device 0x48: nobody there
+        call send
+nacked: mov 0x0208, w6          ; I2CSTAT after it
+        call stop_bit
+done:   bra done
+start_bit:
+        bset 0x0206, #0         ; SEN
+        bra wait_flag
+stop_bit:
+        bset 0x0206, #2         ; PEN
+        bra wait_flag
+send:   mov w0, 0x0202          ; I2CTRN
+wait_flag:
+        btss 0x0084, #14        ; IFS0.MI2CIF
+        bra wait_flag
+        bclr 0x0084, #14
+        inc w7, w7              ; steps completed
+        return
+)");
+    RegisterDevice device;
+    m.i2c().connect(0x1E, device);
+    ASSERT_TRUE(m.run_to("timed"));
+    EXPECT_EQ(device.registers[0x10], 0xA5);
+    EXPECT_EQ(device.registers[0x11], 0x5A);
+    EXPECT_EQ(m.cpu().w(4), 0xA5) << "read back with a repeated start";
+    EXPECT_EQ(m.cpu().w(5), 0x5A);
+    EXPECT_EQ(device.starts, 3);
+    EXPECT_EQ(device.stops, 2);
+    const uint64_t before = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("nacked"));
+    EXPECT_NEAR(static_cast<double>(m.cpu().cycles() - before), 90.0, 12.0)
+      << "a byte and its acknowledge: 9 bit times of 10 cycles";
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_NE(m.cpu().w(6) & 0x8000, 0) << "ACKSTAT: not acknowledged";
+    EXPECT_EQ(m.cpu().w(6) & 0x4001, 0) << "TRSTAT and TBF clear";
+    EXPECT_EQ(m.cpu().w(7), 19) << "every step raised MI2C";
+    EXPECT_EQ(m.data(0x0206) & 0x001F, 0) << "every step bit cleared";
 }
 
 } // namespace

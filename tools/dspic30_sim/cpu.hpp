@@ -111,6 +111,27 @@ class Cpu
         trap_observer_ = std::move(observer);
     }
 
+    // --- power cuts (fault injection) ---------------------------------------
+    // Cuts the power when the k-th NVM operation (flash row erase or
+    // program, EEPROM erase or write, configuration word; counted from 1
+    // since the CPU was made) begins: that operation takes effect on the
+    // first half of its row only (a single EEPROM or configuration word: not
+    // at all), as the chip would leave a row whose erase or programming lost
+    // its supply midway, then run() stops and power_cut() is true. 0 = never.
+    void cut_power_at_nvm_operation(uint64_t k)
+    {
+        power_cut_at_ = k;
+    }
+    // The NVM operations started so far (the one cut included).
+    uint64_t nvm_operations() const
+    {
+        return nvm_operations_;
+    }
+    bool power_cut() const
+    {
+        return power_cut_;
+    }
+
     // --- peripherals --------------------------------------------------------
     // Sets the interrupt flag of IRQ `irq` (IFSx bit irq % 16 of irq / 16).
     void raise_interrupt(int irq);
@@ -308,6 +329,9 @@ class Cpu
     uint64_t nvm_done_at_ = never;
     std::array<uint32_t, flash_row_words> latches_{};
     std::array<bool, flash_row_words> latch_written_{};
+    uint64_t nvm_operations_ = 0;
+    uint64_t power_cut_at_ = 0;
+    bool power_cut_ = false;
 
     // Time and control.
     uint64_t cycles_ = 0;

@@ -153,11 +153,15 @@ void Cpu::nvm_start()
     const uint32_t address = ((static_cast<uint32_t>(nvmadru_) << 16) | nvmadr_) & ~1u;
     const bool erase = nvmcon_ & nvmcon_erase;
     const uint16_t target = nvmcon_ & nvmcon_target;
+    // A power cut at this operation: it reaches the first half of its row
+    // (a single word: nothing), then the chip is off.
+    const bool cut = ++nvm_operations_ == power_cut_at_;
+    const auto done_words = [cut](uint32_t row_words) { return cut ? row_words / 2 : row_words; };
     bool flash_operation = false;
     const auto program_latches = [&](uint32_t row_words) {
         const uint32_t span = 2 * row_words;
         const uint32_t base = address & ~(span - 1);
-        for (uint32_t i = 0; i < row_words; ++i) {
+        for (uint32_t i = 0; i < done_words(row_words); ++i) {
             const uint32_t a = base + 2 * i;
             const uint32_t index = (a / 2) % row_words;
             // Programming only clears bits: an unerased word keeps its zeros.
@@ -168,7 +172,7 @@ void Cpu::nvm_start()
         flash_operation = true;
         const uint32_t base = address & ~(2 * flash_row_words - 1);
         if (erase)
-            program_.erase_row(address, flash_row_words);
+            program_.erase_row(address, flash_row_words, done_words(flash_row_words));
         else
             program_latches(flash_row_words);
         invalidate(base, base + 2 * flash_row_words);
@@ -176,18 +180,27 @@ void Cpu::nvm_start()
                (target == target_eeprom_word || target == target_eeprom_row ||
                 target == target_eeprom_all)) {
         if (erase && target == target_eeprom_all)
-            program_.erase_eeprom();
-        else if (erase)
-            program_.erase_row(address, target == target_eeprom_row ? eeprom_row_words : 1);
+            program_.erase_row(eeprom_base, eeprom_words, done_words(eeprom_words));
+        else if (erase && target == target_eeprom_row)
+            program_.erase_row(address, eeprom_row_words, done_words(eeprom_row_words));
+        else if (erase && !cut)
+            program_.erase_row(address, 1);
         else if (target == target_eeprom_row)
             program_latches(eeprom_row_words);
-        else
+        else if (!cut)
             program_.program(address,
                              program_.read(address) & latches_[(address / 2) % eeprom_row_words]);
     } else if (target == target_config_word && ProgramMemory::is_config(address) && !erase) {
-        program_.program(address, latches_[0]);
+        if (!cut)
+            program_.program(address, latches_[0]);
     } else {
+        --nvm_operations_; // refused: no operation began
         nvmcon_ |= nvmcon_wrerr;
+        return;
+    }
+    if (cut) {
+        power_cut_ = true;
+        request_stop();
         return;
     }
     latches_.fill(erased_word);

@@ -1,18 +1,28 @@
 // dspic30-sim: runs a dsPIC30F6014A image (Intel HEX from pic30-elf-bin2hex
 // or xc16-bin2hex) from reset in the simulator, with UART1 on standard input
-// and output. A run that fails (the chip resetting on traps over and over,
-// an illegal instruction, the wall-clock watchdog, a test's ABORT) ends
-// with a report: the traps, the registers and the last instructions.
+// and output or on a loopback TCP port (an Aseba node), the chip's flash
+// kept in a file between runs if asked. A run that fails (the chip
+// resetting on traps over and over, an illegal instruction, the wall-clock
+// watchdog, a test's ABORT) ends with a report: the traps, the registers
+// and the last instructions.
 
 #include "tools/command_line/command_line.hpp"
 #include "tools/dspic30_sim/disassembler.hpp"
 #include "tools/dspic30_sim/intel_hex.hpp"
+#include "tools/dspic30_sim/memory_file.hpp"
 #include "tools/dspic30_sim/simulator.hpp"
+#include "tools/dspic30_sim/tcp_link.hpp"
+#include "tools/dspic30_sim/wall_clock_pace.hpp"
 
+#include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
+#include <memory>
+#include <optional>
 #include <poll.h>
 #include <string>
+#include <thread>
 #include <unistd.h>
 
 namespace
@@ -21,17 +31,26 @@ namespace
 using namespace aseba::dspic30;
 namespace cl = aseba::command_line;
 
+// The chip's instruction clock on the e-puck (7.3728 MHz crystal, PLL x8, 4
+// clocks an instruction).
+constexpr double chip_cycles_per_second = 14745600;
+// Simulated time between two services of the TCP link: a millisecond of
+// the robot's (about 11 bytes at 115,200 baud).
+constexpr uint64_t tcp_slice_cycles = 14746;
+
 constexpr const char *usage =
-  "usage: dspic30-sim [--uart1 stdio|none] [--cycles N] [--timeout SECONDS]\n"
+  "usage: dspic30-sim [--uart1 stdio|none|tcp:PORT] [--speed FACTOR] [--memory FILE]\n"
+  "                   [--power-cut-at K] [--cycles N] [--timeout SECONDS]\n"
   "                   [--input-after N] [--until-exit] [--illegal stop|nop] [--trace]\n"
-  "                   IMAGE.hex";
+  "                   [IMAGE.hex]";
 
 constexpr const char *details =
   R"(Runs IMAGE.hex on a simulated dsPIC30F6014A (the e-puck's chip) from
 reset: the CPU and its DSP engine, 48 K words of flash, 8 KB of RAM, the
 data EEPROM, the NVM controller, traps, interrupts, the watchdog, timers
-1-5 and UART1; no other peripheral yet (docs/dspic30-sim.md says what is
-modelled). The image is read as
+1-5, UART1, the I/O ports (inputs all low), the 12-bit ADC (inputs all
+at 0) and the I2C master (no device on the bus); no other peripheral yet
+(docs/dspic30-sim.md says what is modelled). The image is read as
 pic30-elf-bin2hex writes it: byte address = 2 x PC address, 4 bytes per
 instruction word, the fourth 0.
 
@@ -39,23 +58,49 @@ With --uart1 stdio (the default) what the program sends on UART1 appears
 on standard output and standard input feeds its receiver, at the baud rate
 the program sets; --input-after holds standard input back until a given
 cycle, as a host that speaks only later (after a bootloader's wait, say).
-The run stops after --cycles instruction cycles, when the
-wall-clock watchdog fires (--timeout), when the chip keeps resetting on
-traps, at a word that is no instruction (--illegal stop), or with
---until-exit when UART1 prints a line "EXIT n" or "ABORT" (the convention
-of the GCC torture tests). At 14.7456 MHz, one second of the robot's time is
-14,745,600 cycles.
+With --uart1 tcp:PORT, UART1 is a TCP server on 127.0.0.1:PORT (0: a free
+port), announced on standard output as "dspic30-sim: UART1 on
+tcp:localhost;PORT", and each client's arrival and departure on standard
+error with the cycle: the robot is an Aseba node for the console, Studio or
+asebamassloader, as over its Bluetooth link. One client at a time: a second
+one is connected by the system but served only once the first leaves; with
+none, what the robot sends is lost. Simulated time then keeps pace with the
+wall clock at the chip's 14.7456 MHz (--speed 1), so that the firmware's
+timeouts last as long as on a robot; --speed 0 runs as fast as it can.
 
-Exit status: 0 when the run reached its cycle limit or printed "EXIT 0"; 1
-when it printed "EXIT n" (n != 0) or "ABORT", kept resetting on traps, hit
-an illegal instruction or the wall-clock watchdog; 2 on bad usage or an
-image that cannot be read or loaded.)";
+With --memory FILE the flash, the data EEPROM and the configuration words
+are kept in FILE between runs: when FILE exists the chip starts with it
+and IMAGE.hex is not loaded (it may then be left out); otherwise IMAGE.hex
+is loaded. When the run ends (its limit, Ctrl-C or SIGTERM, a power cut, a
+failure), FILE receives the memory as it is, written whole to a temporary
+file then renamed. A FILE that cannot be read is an error; nothing is run
+or written then. --power-cut-at K stops the run as a power cut would when
+the K-th NVM operation (flash row erase or write, EEPROM erase or write,
+configuration word) begins: that operation reaches the first half of its
+row only (a single word: not at all).
+
+The run stops after --cycles instruction cycles, when the wall-clock
+watchdog fires (--timeout), when the chip keeps resetting on traps, at a
+word that is no instruction (--illegal stop), on Ctrl-C or SIGTERM, or with
+--until-exit when UART1 prints a line "EXIT n" or "ABORT" (the convention
+of the GCC torture tests). At 14.7456 MHz, one second of the robot's time
+is 14,745,600 cycles.
+
+Exit status: 0 when the run reached its cycle limit, printed "EXIT 0", was
+stopped by Ctrl-C or SIGTERM or by its power cut; 1 when it printed
+"EXIT n" (n != 0) or "ABORT", kept resetting on traps, hit an illegal
+instruction or the wall-clock watchdog, or when the TCP port cannot be
+opened (in use) or the memory file written; 2 on bad usage (a malformed
+--uart1 target) or an image or memory file that cannot be read or loaded.)";
 
 struct Options {
     std::string image;
     std::string uart1 = "stdio";
+    double speed = 1;
+    std::string memory;
+    uint64_t power_cut_at = 0;
     uint64_t cycles = never;
-    double timeout = 60;
+    std::optional<double> timeout;
     bool until_exit = false;
     std::string illegal = "stop";
     bool trace = false;
@@ -68,14 +113,35 @@ Options parse_command_line(int argc, char **argv)
     CLI::App app(details, "dspic30-sim");
     auto formatter = cl::use_common_style(app);
     formatter->set_usage(&app, usage);
-    app.add_option("IMAGE.hex", o.image, "the program, as pic30-elf-bin2hex writes it")
-      ->required()
+    app
+      .add_option("IMAGE.hex",
+                  o.image,
+                  "the program, as pic30-elf-bin2hex writes it (not needed when the --memory "
+                  "FILE exists)")
       ->type_name("");
     app
-      .add_option(
-        "--uart1", o.uart1, "stdio: UART1 on standard input and output; none: unconnected")
-      ->check(CLI::IsMember({ "stdio", "none" }))
+      .add_option("--uart1",
+                  o.uart1,
+                  "stdio: UART1 on standard input and output; none: unconnected;\n"
+                  "tcp:PORT: a TCP server on 127.0.0.1:PORT (0: a free port)")
       ->type_name("MODE");
+    app
+      .add_option("--speed",
+                  o.speed,
+                  "with tcp:PORT, simulated time at FACTOR x the wall clock (default 1;\n"
+                  "0: as fast as it can)")
+      ->check(CLI::NonNegativeNumber)
+      ->type_name("FACTOR");
+    app
+      .add_option(
+        "--memory", o.memory, "keep flash, EEPROM and configuration words in FILE between runs")
+      ->type_name("FILE");
+    app
+      .add_option("--power-cut-at",
+                  o.power_cut_at,
+                  "cut the power when the K-th NVM operation begins (it reaches half its row)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("K");
     app
       .add_option("--input-after",
                   o.input_after,
@@ -86,7 +152,8 @@ Options parse_command_line(int argc, char **argv)
     app
       .add_option("--timeout",
                   o.timeout,
-                  "the wall-clock watchdog: fail after SECONDS of run time (default 60; 0: none)")
+                  "the wall-clock watchdog: fail after SECONDS of run time (default 60,\n"
+                  "none with tcp:PORT; 0: none)")
       ->check(CLI::NonNegativeNumber)
       ->type_name("SECONDS");
     app.add_flag(
@@ -105,6 +172,15 @@ Options parse_command_line(int argc, char **argv)
                  "print each instruction before it runs, with the registers, on standard error");
     cl::parse_or_exit(app, argc, argv);
     return o;
+}
+
+// Set by SIGINT and SIGTERM: the run ends at the next slice, the memory is
+// written.
+volatile std::sig_atomic_t stop_signal = 0;
+
+void on_stop_signal(int)
+{
+    stop_signal = 1;
 }
 
 int read_standard_input()
@@ -171,43 +247,109 @@ void report(Cpu &cpu, const RunResult &result)
         std::cerr << "    " << hex(pc, 6) << "  " << instruction_text(cpu, pc) << "\n";
 }
 
+// The chip's memory at start: the --memory FILE when it exists, else the
+// image. Exits (status 2) when neither can be used.
+void load_memory(Simulator &simulator, const Options &options)
+{
+    if (!options.memory.empty() && std::filesystem::exists(options.memory)) {
+        try {
+            restore_memory(simulator.cpu(), read_memory_file(options.memory));
+        } catch (const MemoryFileError &e) {
+            std::cerr << "dspic30-sim: " << e.what() << " (left as it is)\n";
+            std::exit(cl::EXIT_USAGE);
+        }
+        if (!options.image.empty())
+            std::cerr << "dspic30-sim: the chip starts with " << options.memory << "; "
+                      << options.image << " is not loaded\n";
+        simulator.cpu().power_on_reset();
+        return;
+    }
+    if (options.image.empty()) {
+        cl::print_usage_error("dspic30-sim",
+                              options.memory.empty()
+                                ? "no IMAGE.hex given"
+                                : "no IMAGE.hex given, and " + options.memory + " does not exist");
+        std::exit(cl::EXIT_USAGE);
+    }
+    try {
+        simulator.load(read_intel_hex_file(options.image));
+    } catch (const HexError &e) {
+        std::cerr << "dspic30-sim: " << e.what() << "\n";
+        std::exit(cl::EXIT_USAGE);
+    } catch (const std::invalid_argument &e) {
+        std::cerr << "dspic30-sim: " << options.image << ": " << e.what() << "\n";
+        std::exit(cl::EXIT_USAGE);
+    }
+}
+
+// The exit status of a run that ended with `result`, after its report.
+int run_status(Cpu &cpu, const RunResult &result)
+{
+    switch (result.outcome) {
+    case Outcome::cycle_limit:
+    case Outcome::interrupted: return cl::EXIT_OK;
+    case Outcome::power_cut:
+        std::cerr << "dspic30-sim: power cut at NVM operation " << cpu.nvm_operations()
+                  << ", cycle " << result.cycles << "\n";
+        return cl::EXIT_OK;
+    case Outcome::exit_line:
+        if (result.exit_status == 0)
+            return cl::EXIT_OK;
+        report(cpu, result);
+        return cl::EXIT_FAILED;
+    default: report(cpu, result); return cl::EXIT_FAILED;
+    }
+}
+
 } // namespace
 
 int main(int argc, char **argv)
 {
     const Options options = parse_command_line(argc, argv);
-    std::map<uint32_t, uint32_t> words;
-    try {
-        words = read_intel_hex_file(options.image);
-    } catch (const HexError &e) {
-        std::cerr << "dspic30-sim: " << e.what() << "\n";
-        return cl::EXIT_USAGE;
-    }
     const bool stdio = options.uart1 == "stdio";
+    std::unique_ptr<TcpLink> link;
+    if (!stdio && options.uart1 != "none") {
+        uint16_t port = 0;
+        try {
+            port = parse_tcp_target(options.uart1);
+        } catch (const std::invalid_argument &e) {
+            cl::print_usage_error(
+              "dspic30-sim", std::string("--uart1: ") + e.what() + " (stdio, none or tcp:PORT)");
+            return cl::EXIT_USAGE;
+        }
+        try {
+            link = std::make_unique<TcpLink>(port);
+        } catch (const LinkError &e) {
+            std::cerr << "dspic30-sim: " << e.what() << "\n";
+            return cl::EXIT_FAILED;
+        }
+    }
+
     const Cpu *chip = nullptr; // set once the simulator exists
     const auto input = [&chip, after = options.input_after]() {
         if (chip == nullptr || chip->cycles() < after)
             return -1;
         return read_standard_input();
     };
-    Simulator simulator(
-      [stdio](uint8_t byte) {
-          if (!stdio)
-              return;
-          std::fputc(byte, stdout);
-          if (byte == '\n')
-              std::fflush(stdout);
-      },
-      stdio ? std::function<int()>(input) : std::function<int()>());
-    chip = &simulator.cpu();
-    try {
-        simulator.load(words);
-    } catch (const std::invalid_argument &e) {
-        std::cerr << "dspic30-sim: " << options.image << ": " << e.what() << "\n";
-        return cl::EXIT_USAGE;
+    std::function<void(uint8_t)> output;
+    std::function<int()> receive;
+    if (link) {
+        output = [&link](uint8_t byte) { link->write_byte(byte); };
+        receive = [&link]() { return link->read_byte(); };
+    } else if (stdio) {
+        output = [](uint8_t byte) {
+            std::fputc(byte, stdout);
+            if (byte == '\n')
+                std::fflush(stdout);
+        };
+        receive = input;
     }
+    Simulator simulator(output, receive);
+    chip = &simulator.cpu();
+    load_memory(simulator, options);
     Cpu &cpu = simulator.cpu();
     cpu.set_stop_on_illegal(options.illegal == "stop");
+    cpu.cut_power_at_nvm_operation(options.power_cut_at);
     if (options.trace)
         cpu.set_trace([&](const Cpu &c) {
             const uint32_t pc = c.pc();
@@ -217,19 +359,48 @@ int main(int argc, char **argv)
                          instruction_text(cpu, pc).c_str(),
                          c.register_summary().c_str());
         });
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+
     RunLimits limits;
     limits.cycles = options.cycles;
-    limits.seconds = options.timeout;
+    limits.seconds = options.timeout.value_or(link ? 0 : 60);
     limits.stop_at_exit_line = options.until_exit;
-    const RunResult result = simulator.run(limits);
-    std::fflush(stdout);
-    switch (result.outcome) {
-    case Outcome::cycle_limit: return cl::EXIT_OK;
-    case Outcome::exit_line:
-        if (result.exit_status == 0)
-            return cl::EXIT_OK;
-        report(cpu, result);
-        return cl::EXIT_FAILED;
-    default: report(cpu, result); return cl::EXIT_FAILED;
+    WallClockPace pace(link ? options.speed * chip_cycles_per_second : 0);
+    if (link) {
+        std::printf("dspic30-sim: UART1 on tcp:localhost;%u\n", unsigned(link->port()));
+        std::fflush(stdout);
+        simulator.set_between_slices(tcp_slice_cycles, [&] {
+            const bool was_connected = link->connected();
+            link->service(0);
+            if (link->connected() != was_connected)
+                std::fprintf(stderr,
+                             "dspic30-sim: client %s at cycle %llu (%.3f s)\n",
+                             was_connected ? "gone" : "connected",
+                             static_cast<unsigned long long>(cpu.cycles()),
+                             static_cast<double>(cpu.cycles()) / chip_cycles_per_second);
+            const auto wait = pace.wait_at(cpu.cycles());
+            if (wait > WallClockPace::Clock::duration::zero())
+                std::this_thread::sleep_for(wait);
+            return stop_signal == 0;
+        });
+    } else {
+        simulator.set_between_slices(uint64_t{ 1 } << 22, [] { return stop_signal == 0; });
     }
+    const RunResult result = simulator.run(limits);
+    if (link)
+        link->service(0); // the last replies
+    std::fflush(stdout);
+    int status = run_status(cpu, result);
+    if (!options.memory.empty()) {
+        try {
+            write_memory_file(options.memory, capture_memory(cpu.program_memory()));
+            std::cerr << "dspic30-sim: " << cpu.nvm_operations()
+                      << " NVM operations; memory kept in " << options.memory << "\n";
+        } catch (const MemoryFileError &e) {
+            std::cerr << "dspic30-sim: " << e.what() << "\n";
+            status = cl::EXIT_FAILED;
+        }
+    }
+    return status;
 }

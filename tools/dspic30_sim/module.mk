@@ -8,7 +8,10 @@ dspic30_sim_SOURCES := tools/dspic30_sim/isa.cpp tools/dspic30_sim/disassembler.
                        tools/dspic30_sim/cpu_execute.cpp tools/dspic30_sim/cpu_dsp.cpp \
                        tools/dspic30_sim/cpu_exceptions.cpp tools/dspic30_sim/cpu_nvm.cpp \
                        tools/dspic30_sim/uart.cpp tools/dspic30_sim/timers.cpp \
-                       tools/dspic30_sim/intel_hex.cpp \
+                       tools/dspic30_sim/gpio.cpp tools/dspic30_sim/adc.cpp \
+                       tools/dspic30_sim/i2c.cpp \
+                       tools/dspic30_sim/intel_hex.cpp tools/dspic30_sim/memory_file.cpp \
+                       tools/dspic30_sim/tcp_link.cpp \
                        tools/dspic30_sim/simulator.cpp
 
 # dspic30-sim: runs an image, UART1 on standard input and output.

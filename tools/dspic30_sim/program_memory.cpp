@@ -3,6 +3,8 @@
 
 #include "tools/dspic30_sim/program_memory.hpp"
 
+#include <algorithm>
+
 namespace aseba::dspic30
 {
 namespace
@@ -48,21 +50,17 @@ bool ProgramMemory::program(uint32_t address, uint32_t word)
     return true;
 }
 
-void ProgramMemory::erase_row(uint32_t address, uint32_t row_words)
+void ProgramMemory::erase_row(uint32_t address, uint32_t row_words, uint32_t done_words)
 {
     const uint32_t span = 2 * row_words;
     const uint32_t first = address & ~(span - 1);
-    for (uint32_t a = first; a < first + span; a += 2) {
+    const uint32_t end = first + 2 * std::min(row_words, done_words);
+    for (uint32_t a = first; a < end; a += 2) {
         if (is_flash(a))
             flash_[a / 2] = erased_word;
         else if (is_eeprom(a))
             eeprom_[(a - eeprom_base) / 2] = erased_data_word;
     }
-}
-
-void ProgramMemory::erase_eeprom()
-{
-    eeprom_.assign(eeprom_words, erased_data_word);
 }
 
 } // namespace aseba::dspic30

@@ -46,10 +46,10 @@ class ProgramMemory
     // be stored.
     bool program(uint32_t address, uint32_t word);
 
-    // Erases the row of `row_words` words holding `address` (flash or EEPROM).
-    void erase_row(uint32_t address, uint32_t row_words);
-    // Erases the whole data EEPROM.
-    void erase_eeprom();
+    // Erases the row of `row_words` words holding `address` (flash or
+    // EEPROM): its first `done_words` words (all by default; fewer for a
+    // power cut midway).
+    void erase_row(uint32_t address, uint32_t row_words, uint32_t done_words = ~0u);
 
     // The flash words, for the executor's fetch (index = PC / 2).
     const uint32_t *flash() const

@@ -11,8 +11,6 @@ namespace aseba::dspic30
 {
 namespace
 {
-// Cycles between two looks at the wall clock (some tens of milliseconds).
-constexpr uint64_t slice_cycles = uint64_t{ 1 } << 22;
 constexpr std::size_t longest_line = 256;
 } // namespace
 
@@ -25,6 +23,8 @@ std::string outcome_name(Outcome outcome)
     case Outcome::trap_reset_storm: return "trap-reset storm";
     case Outcome::illegal_instruction: return "illegal instruction";
     case Outcome::wall_clock: return "wall-clock watchdog";
+    case Outcome::power_cut: return "power cut";
+    case Outcome::interrupted: return "signal";
     }
     return "?";
 }
@@ -36,10 +36,16 @@ Simulator::Simulator(std::function<void(uint8_t)> output, std::function<int()> i
       [this](uint8_t b) { uart_byte(b); },
       std::move(input))
   , timers_(cpu_)
+  , gpio_(cpu_)
+  , adc_(cpu_)
+  , i2c_(cpu_)
   , output_(std::move(output))
 {
     uart1_.attach();
     timers_.attach();
+    gpio_.attach();
+    adc_.attach();
+    i2c_.attach();
     cpu_.set_trap_observer([this](const TrapRecord &record) {
         if (!current_)
             return;
@@ -98,8 +104,8 @@ RunResult Simulator::run(const RunLimits &limits)
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     for (;;) {
-        const uint64_t target = limits.cycles - cpu_.cycles() > slice_cycles
-                                  ? cpu_.cycles() + slice_cycles
+        const uint64_t target = limits.cycles - cpu_.cycles() > slice_cycles_
+                                  ? cpu_.cycles() + slice_cycles_
                                   : limits.cycles;
         const StopReason reason = cpu_.run(target);
         if (line_outcome_) {
@@ -115,12 +121,20 @@ RunResult Simulator::run(const RunLimits &limits)
             result.outcome = Outcome::illegal_instruction;
             break;
         }
+        if (cpu_.power_cut()) {
+            result.outcome = Outcome::power_cut;
+            break;
+        }
         if (cpu_.cycles() >= limits.cycles) {
             result.outcome = Outcome::cycle_limit;
             break;
         }
         if (limits.seconds > 0 && elapsed() > limits.seconds) {
             result.outcome = Outcome::wall_clock;
+            break;
+        }
+        if (between_slices_ && !between_slices_()) {
+            result.outcome = Outcome::interrupted;
             break;
         }
     }

@@ -1,11 +1,15 @@
-// A dsPIC30F6014A with UART1 on host byte streams and timers 1-5, as dspic30-sim and the
-// tests run it: load an image, run it from reset under a cycle limit and a
-// wall-clock watchdog, and stop at the line a test program prints at its end
-// ("EXIT n" or "ABORT", the convention of ../shared/vectors/gcc-torture).
+// A dsPIC30F6014A with UART1 on host byte streams, timers 1-5, the I/O
+// ports, the ADC and the I2C master, as dspic30-sim and the tests run it: load an image, run it
+// from reset under a cycle limit and a wall-clock watchdog, and stop at the line a test program
+// prints at its end ("EXIT n" or "ABORT", the convention of
+// ../shared/vectors/gcc-torture).
 
 #pragma once
 
+#include "tools/dspic30_sim/adc.hpp"
 #include "tools/dspic30_sim/cpu.hpp"
+#include "tools/dspic30_sim/gpio.hpp"
+#include "tools/dspic30_sim/i2c.hpp"
 #include "tools/dspic30_sim/timers.hpp"
 #include "tools/dspic30_sim/uart.hpp"
 
@@ -27,6 +31,8 @@ enum class Outcome : uint8_t {
     trap_reset_storm,    // the chip kept resetting on traps
     illegal_instruction, // the PC reached a word that is no instruction
     wall_clock,          // the wall-clock watchdog fired
+    power_cut,           // the NVM operation chosen for a power cut began
+    interrupted,         // the caller's between-slices hook asked to stop (a signal)
 };
 
 // The words of `outcome` ("cycle limit", "EXIT line", ...).
@@ -63,9 +69,31 @@ class Simulator
 
     RunResult run(const RunLimits &limits);
 
+    // Calls `hook` after each slice of `slice_cycles` of a run (the TCP
+    // link, pacing to the wall clock); the hook returning false stops the
+    // run (Outcome::interrupted). Without one, a run looks at the wall
+    // clock every 2^22 cycles.
+    void set_between_slices(uint64_t slice_cycles, std::function<bool()> hook)
+    {
+        slice_cycles_ = slice_cycles;
+        between_slices_ = std::move(hook);
+    }
+
     Cpu &cpu()
     {
         return cpu_;
+    }
+    GpioPorts &gpio()
+    {
+        return gpio_;
+    }
+    Adc &adc()
+    {
+        return adc_;
+    }
+    I2cMaster &i2c()
+    {
+        return i2c_;
     }
 
   private:
@@ -74,12 +102,17 @@ class Simulator
     Cpu cpu_;
     Uart uart1_;
     Timers timers_;
+    GpioPorts gpio_;
+    Adc adc_;
+    I2cMaster i2c_;
     std::function<void(uint8_t)> output_;
     std::string line_;
     bool watching_exit_ = false;
     std::optional<Outcome> line_outcome_;
     int exit_status_ = 0;
     RunResult *current_ = nullptr;
+    uint64_t slice_cycles_ = uint64_t{ 1 } << 22;
+    std::function<bool()> between_slices_;
 };
 
 } // namespace aseba::dspic30
