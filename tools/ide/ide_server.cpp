@@ -845,9 +845,15 @@ void IdeServer::handle(ConnectionId connection, uint64_t id, ControlRequest &req
               bool ok = results[i]["ok"].get<bool>();
               all_ok = all_ok && ok;
               auto robot = robots_.find(robots[i]);
-              if (!ok || action != Action::store || robot == robots_.end())
+              if (!ok || robot == robots_.end())
                   continue;
-              robot->second.program_stored = robot->second.program != nullptr;
+              if (action == Action::store)
+                  robot->second.program_stored = robot->second.program != nullptr;
+              // Rebooted, it runs what its flash holds, not what we loaded.
+              else if (action == Action::reboot && !robot->second.program_stored)
+                  robot->second.program.reset();
+              else
+                  continue;
               broadcast({ { "type", "robot" }, { "robot", robot_json(robot->second) } },
                         Delivery::essential);
           }

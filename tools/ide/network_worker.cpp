@@ -15,6 +15,8 @@ namespace
 
 // How long one poll may wait for bytes: the delay before a queued task runs.
 constexpr client::Milliseconds POLL_PERIOD{ 10 };
+// How often a robot whose execution state is unknown is asked for it.
+constexpr client::Milliseconds STATE_QUESTION_PERIOD{ 1000 };
 
 // What the IDE shows of a node, as text, to tell when it changed.
 std::string robot_signature(const client::Node &node, bool alive)
@@ -182,14 +184,24 @@ void NetworkWorker::report_robots()
     for (NodeKey key : keys) {
         const client::Node &node = network_->node(key);
         bool alive = network_->is_alive(key);
+        // A robot running since before we came, or rebooted, says how it
+        // runs only when asked, again until it answers (a rebooting robot
+        // does not hear); its answer updates the model like any other.
+        if (node.described && node.compatible && !node.execution && alive) {
+            auto now = client::Clock::now();
+            auto [asked, first] = state_asked_.try_emplace(key, now);
+            if (first || now - asked->second >= STATE_QUESTION_PERIOD) {
+                asked->second = now;
+                network_->send(key.target,
+                               client::NodeCommand{ NODE_MSG_GET_EXECUTION_STATE, key.id });
+            }
+        } else {
+            state_asked_.erase(key);
+        }
         std::string signature = robot_signature(node, alive);
         auto [entry, is_new] = reported_robots_.try_emplace(key, signature);
         if (!is_new && entry->second == signature)
             continue;
-        // A robot running since before we came says how it runs only when
-        // asked; its answer updates the model like any other.
-        if (node.described && node.compatible && !node.execution && alive)
-            network_->send(key.target, client::NodeCommand{ NODE_MSG_GET_EXECUTION_STATE, key.id });
         entry->second = signature;
         RobotSnapshot snapshot{ key,
                                 node.described,
@@ -206,6 +218,7 @@ void NetworkWorker::report_robots()
         if (std::find(keys.begin(), keys.end(), entry->first) == keys.end()) {
             report(
               [key = entry->first](const NetworkReports &reports) { reports.robot_gone(key); });
+            state_asked_.erase(entry->first);
             entry = reported_robots_.erase(entry);
         } else {
             ++entry;

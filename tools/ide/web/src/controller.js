@@ -85,12 +85,14 @@ export class Controller {
         });
     }
 
-    // The line where a robot stands, in its editor.
+    // The line where a robot stands in an event, in its editor. A robot
+    // stopped outside any event (Stop, a run-time error, an event's end
+    // stepped through) stands at no line.
     showExecution(robot) {
         const session = this.sessions.get(robot.robot);
         if (!session) return;
-        const stopped = robot.present && (robot.state === "stepping" || robot.state === "stopped");
-        const line = stopped ? (robot.line ?? 0) : 0;
+        const inEvent = robot.present && robot.state === "stepping";
+        const line = inEvent ? (robot.line ?? 0) : 0;
         if (session.executionLine === line) return;
         session.executionLine = line;
         session.setExecutionLine(line);
