@@ -431,6 +431,17 @@ void IdeServer::on_network(std::function<Json(client::Network &)> work,
 
 void IdeServer::links_changed(std::vector<LinkStatus> &&links)
 {
+    // Said in the terminal too: whoever started the IDE learns there that a
+    // target is wrong, without opening the page.
+    for (size_t i = 0; i < links.size(); i++) {
+        const LinkStatus &link = links[i];
+        const LinkStatus *before = i < links_.size() ? &links_[i] : nullptr;
+        if (link.up && before && !before->up)
+            std::cerr << "aseba-ide: " << link.target << ": connected\n";
+        else if (!link.up && !link.error.empty() &&
+                 (!before || before->up || before->error != link.error))
+            std::cerr << "aseba-ide: " << link.target << ": " << link.error << " (trying again)\n";
+    }
     links_ = std::move(links);
     Json json = Json::array();
     for (const LinkStatus &link : links_)

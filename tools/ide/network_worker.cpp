@@ -29,6 +29,14 @@ std::string robot_signature(const client::Node &node, bool alive)
     return signature;
 }
 
+// A link's failure without the target it starts with: the target is
+// shown beside it.
+std::string without_target(const std::string &reason, const std::string &target)
+{
+    std::string prefix = target + ": ";
+    return reason.starts_with(prefix) ? reason.substr(prefix.size()) : reason;
+}
+
 } // namespace
 
 NetworkWorker::NetworkWorker(asio::io_context &reports_context,
@@ -45,15 +53,16 @@ NetworkWorker::NetworkWorker(asio::io_context &reports_context,
     network_->set_link_listener(
       [this](size_t target, client::LinkState state, const std::string &reason) {
           links_.at(target).up = state == client::LinkState::up;
-          links_.at(target).error = reason;
+          links_.at(target).error = without_target(reason, network_->target_name(target));
       });
     // Targets that cannot be reached now are tried again by the Network;
     // only a malformed target string throws, before the thread starts.
     for (const std::string &target : targets_) {
         size_t index = network_->connect(target, client::LinkPolicy::reconnect);
-        links_.push_back(LinkStatus{ target,
-                                     network_->link_state(index) == client::LinkState::up,
-                                     network_->link_error(index) });
+        links_.push_back(
+          LinkStatus{ target,
+                      network_->link_state(index) == client::LinkState::up,
+                      without_target(network_->link_error(index), network_->target_name(index)) });
     }
     thread_ = std::thread([this] { run(); });
 }

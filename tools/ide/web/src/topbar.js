@@ -41,7 +41,7 @@ export class TopBar {
         this.linkStates = h("div", { class: "link-states" });
         this.projectName = h("span", { class: "project-name" });
 
-        const groupButtons = GROUP_ACTIONS.map((entry) =>
+        this.groupButtons = GROUP_ACTIONS.map((entry) =>
             button({
                 icon: entry.icon,
                 text: entry.text,
@@ -88,7 +88,7 @@ export class TopBar {
             h(
                 "div",
                 { class: "toolbar group-toolbar", attrs: { role: "toolbar", "aria-label": "Whole group" } },
-                groupButtons,
+                this.groupButtons,
             ),
             h("div", { class: "topbar-status" }, this.linkStates, this.pageState),
         );
@@ -98,8 +98,11 @@ export class TopBar {
         connection.on("state", () => this.renderPage());
         model.on("links", () => this.renderLinks());
         model.on("project", () => this.renderProject());
+        model.on("robots", () => this.renderGroup());
+        model.on("robot", () => this.renderGroup());
         this.renderPage();
         this.renderProject();
+        this.renderGroup();
         // The countdown to the next attempt.
         setInterval(() => {
             if (connection.state === "waiting") this.renderPage();
@@ -138,6 +141,19 @@ export class TopBar {
         if (state !== "open") this.renderLinks();
     }
 
+    // The group's buttons act on the robots there: none, nothing to do.
+    renderGroup() {
+        const none = this.model.readyRobots().length === 0;
+        for (const element of this.groupButtons) {
+            element.disabled = none;
+            element.title = none
+                ? `${element.getAttribute("aria-label")} (no robot on the network)`
+                : element.getAttribute("aria-label");
+        }
+    }
+
+    // Each network's state in a few words; why one is down is said in full
+    // in the network view (network-view.js), where it has room.
     renderLinks() {
         const open = this.connection.open;
         setChildren(
@@ -155,8 +171,8 @@ export class TopBar {
                         dataset: { target: link.target, up: String(open && link.up) },
                     },
                     h("span", { class: "dot" }),
-                    h("span", { text: link.target }),
-                    open && !link.up ? h("span", { class: "link-error", text: link.error || "down" }) : null,
+                    h("span", { class: "link-target", text: link.target }),
+                    open && !link.up ? h("span", { class: "link-error", text: "unreachable" }) : null,
                 ),
             ),
         );
