@@ -12,6 +12,7 @@ import { loadSetting, saveSetting } from "./storage.js";
  * @property {import("./network-view.js").NetworkView} network
  * @property {import("./arena-view.js").ArenaView} arena
  * @property {import("./bottom-panel.js").BottomPanel} bottom
+ * @property {import("./help-panel.js").HelpPanel} help
  */
 
 export class Controller {
@@ -61,11 +62,12 @@ export class Controller {
     // Shows robot `name` in every view.
     /** @param {string} name */
     select(name) {
-        const { robotPanel, tabs, network, arena } = this.views;
+        const { robotPanel, tabs, network, arena, help } = this.views;
         robotPanel.show(name);
         tabs.setActive(name);
         network.setActive(name);
         arena.setActive(name);
+        help.robotChanged();
         saveSetting("active-robot", name);
         this.updateWatch();
     }

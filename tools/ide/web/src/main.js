@@ -19,6 +19,8 @@ import { RobotPanel } from "./robot-panel.js";
 import { BottomPanel } from "./bottom-panel.js";
 import { splitter } from "./layout.js";
 import { Controller } from "./controller.js";
+import { HelpPanel } from "./help-panel.js";
+import { installKeys } from "./keys.js";
 
 const root = document.getElementById("app");
 const scheme = location.protocol === "https:" ? "wss" : "ws";
@@ -40,7 +42,9 @@ root.append(topArea);
 const messages = new MessageBar(root);
 const commands = new Commands({ connection, model, sessions, messages });
 const controller = new Controller({ connection, model, sessions, commands, messages });
-new TopBar(topArea, { connection, model, commands });
+const help = new HelpPanel(root, { model, robotShown: () => robotPanel?.robotName ?? null });
+new TopBar(topArea, { connection, model, commands, help });
+installKeys({ commands, help });
 
 const sidebar = h("aside", { class: "sidebar", attrs: { "aria-label": "Network and arena" } });
 const main = h("main", { class: "main-area" });
@@ -89,7 +93,7 @@ const bottom = new BottomPanel(bottomArea, { model, commands, messages });
 // For the browser tests, which open the page as /?test
 // (tests/ide/harness.mjs): the page's parts, read-only by convention.
 if (new URLSearchParams(location.search).has("test"))
-    window.asebaIde = { connection, model, sessions, commands, robotPanel, bottom, controller };
+    window.asebaIde = { connection, model, sessions, commands, robotPanel, bottom, controller, help };
 
 // The server's messages, to the parts of the page.
-controller.start({ robotPanel, tabs, network, arena, bottom });
+controller.start({ robotPanel, tabs, network, arena, bottom, help });

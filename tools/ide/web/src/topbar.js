@@ -9,16 +9,16 @@ const GROUP_ACTIONS = [
         action: "load",
         icon: icons.load,
         text: "Load all",
-        label: "Load all: compile every robot's script and load it, then run",
+        label: "Load all (F7): compile every robot's script and load it, then run",
     },
-    { action: "run", icon: icons.run, text: "Run all", label: "Run all robots" },
-    { action: "pause", icon: icons.pause, text: "Pause all", label: "Pause all robots" },
+    { action: "run", icon: icons.run, text: "Run all", label: "Run all robots (F9)" },
+    { action: "pause", icon: icons.pause, text: "Pause all", label: "Pause all robots (F10)" },
     { action: "stop", icon: icons.stop, text: "Stop all", label: "Stop all robots" },
     {
         action: "reset",
         icon: icons.reset,
         text: "Reset all",
-        label: "Reset all robots: restart their programs from the start",
+        label: "Reset all robots (F8): restart their programs from the start",
     },
     {
         action: "store",
@@ -30,7 +30,7 @@ const GROUP_ACTIONS = [
 ];
 
 export class TopBar {
-    constructor(container, { connection, model, commands }) {
+    constructor(container, { connection, model, commands, help }) {
         this.connection = connection;
         this.model = model;
         this.pageState = h("div", {
@@ -90,7 +90,19 @@ export class TopBar {
                 { class: "toolbar group-toolbar", attrs: { role: "toolbar", "aria-label": "Whole group" } },
                 this.groupButtons,
             ),
-            h("div", { class: "topbar-status" }, this.linkStates, this.pageState),
+            h(
+                "div",
+                { class: "topbar-status" },
+                this.linkStates,
+                this.pageState,
+                button({
+                    icon: icons.help,
+                    text: "Help",
+                    label: "Help (F1): the keys, the language, this robot's variables, events and functions",
+                    className: "help-button",
+                    onClick: () => help.toggle(),
+                }),
+            ),
         );
         container.append(element);
         this.saveButton = element.querySelector('[aria-label="Save the project"]');
