@@ -83,12 +83,17 @@ main.append(
         min: 120,
         max: () => window.innerHeight * 0.7,
         setting: "bottom-height",
-        initial: Math.round(Math.min(300, Math.max(180, window.innerHeight * 0.3))),
+        // Room for the plot (or the monitor) and the editor both.
+        initial: Math.round(Math.min(420, Math.max(260, window.innerHeight * 0.38))),
         label: "Resize the bottom panel",
     }),
     bottomArea,
 );
 const bottom = new BottomPanel(bottomArea, { model, commands, messages });
+// The message bar stays above the bottom panel, whatever its height.
+new ResizeObserver(() =>
+    document.documentElement.style.setProperty("--bottom-area-height", `${bottomArea.offsetHeight}px`),
+).observe(bottomArea);
 
 // For the browser tests, which open the page as /?test
 // (tests/ide/harness.mjs): the page's parts, read-only by convention.
