@@ -133,6 +133,8 @@ export class RobotPanel {
         const sideBody = h("div", { class: "side-body" });
         this.variables = new VariablesPanel(sideBody, {
             onSet: (robot, name, index, values) => commands.setVariable(robot, name, index, values),
+            label: (robot) => model.label(robot),
+            messages: commands.messages,
         });
         this.events = new RobotInfoPanel(sideBody, "events");
         this.natives = new RobotInfoPanel(sideBody, "natives");
