@@ -3,6 +3,7 @@
 
 import { h, button, setChildren } from "./dom.js";
 import { icons } from "./icons.js";
+import { loadRecentProjects } from "./storage.js";
 
 const GROUP_ACTIONS = [
     {
@@ -33,6 +34,7 @@ export class TopBar {
     constructor(container, { connection, model, commands, help }) {
         this.connection = connection;
         this.model = model;
+        this.commands = commands;
         this.pageState = h("div", {
             class: "connection-state",
             attrs: { role: "status" },
@@ -67,11 +69,32 @@ export class TopBar {
                 "div",
                 { class: "toolbar project-toolbar", attrs: { role: "toolbar", "aria-label": "Project" } },
                 button({
+                    icon: icons.add,
+                    text: "New",
+                    label: "New project: empty scripts, no events, no constants (click twice)",
+                    onClick: () => commands.newProject(),
+                }),
+                button({
                     icon: icons.open,
                     text: "Open",
                     label: "Open project: an .aesl file from this computer",
                     onClick: () => commands.openProject(),
                 }),
+                h(
+                    "div",
+                    { class: "recent-projects" },
+                    (this.recentButton = button({
+                        icon: icons.collapse,
+                        label: "Open a recent project: one opened before from this browser",
+                        className: "icon-only recent-button",
+                        onClick: () => this.toggleRecent(),
+                    })),
+                    (this.recentMenu = h("div", {
+                        class: "recent-menu",
+                        attrs: { role: "menu", "aria-label": "Recent projects" },
+                        hidden: true,
+                    })),
+                ),
                 button({
                     icon: icons.save,
                     text: "Save",
@@ -139,7 +162,7 @@ export class TopBar {
         setChildren(
             this.pageState,
             h("span", { class: "dot" }),
-            h("span", { text: `Server: ${text}` }),
+            h("span", {}, h("span", { class: "connection-prefix", text: "Server: " }), text),
             state === "waiting"
                 ? h("button", {
                       type: "button",
@@ -151,6 +174,41 @@ export class TopBar {
         );
         // Links are the server's to tell: unknown while it is away.
         if (state !== "open") this.renderLinks();
+    }
+
+    // The projects opened before from this browser, newest first.
+    toggleRecent() {
+        if (!this.recentMenu.hidden) {
+            this.recentMenu.hidden = true;
+            return;
+        }
+        const entries = loadRecentProjects();
+        setChildren(
+            this.recentMenu,
+            entries.length === 0
+                ? h("div", { class: "recent-empty", text: "No project opened from this browser yet." })
+                : null,
+            entries.map((entry) =>
+                h("button", {
+                    type: "button",
+                    class: "recent-entry",
+                    attrs: { role: "menuitem" },
+                    text: entry.name,
+                    title: `Opened ${new Date(entry.time).toLocaleString()}`,
+                    onClick: () => {
+                        this.recentMenu.hidden = true;
+                        this.commands.openRecentProject(entry);
+                    },
+                }),
+            ),
+        );
+        this.recentMenu.hidden = false;
+        const close = (event) => {
+            if (this.recentMenu.parentElement.contains(event.target)) return;
+            this.recentMenu.hidden = true;
+            document.removeEventListener("pointerdown", close, true);
+        };
+        document.addEventListener("pointerdown", close, true);
     }
 
     // The group's buttons act on the robots there: none, nothing to do.
