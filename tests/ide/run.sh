@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The IDE's browser tests: Debian's Chromium, headless, driven by
 # playwright-core, on the page that aseba-ide serves, against simulated
-# e-pucks (tests/ide/ide.test.mjs), and the page's pure parts without a browser
+# e-pucks (tests/ide/*.test.mjs: ide.test.mjs the whole page, the others one
+# concern each), and the page's pure parts without a browser
 # (tests/ide/page-units.test.mjs). Ends with "N passed, N failed".
 #
 # Usage: tests/ide/run.sh [--screenshots] [BIN_DIR]
@@ -23,7 +24,9 @@ log=$(mktemp)
 trap 'rm -f "$log"' EXIT
 
 # node's test runner prints its counts as "ℹ pass N" and "ℹ fail N".
-timeout 300 node --test --test-reporter=spec tests/ide/page-units.test.mjs tests/ide/ide.test.mjs 2>&1 | tee "$log"
+# Every tests/ide/*.test.mjs, one file after another (each starts its own
+# robots and server).
+timeout 900 node --test --test-concurrency=1 --test-reporter=spec tests/ide/*.test.mjs 2>&1 | tee "$log"
 status=${PIPESTATUS[0]}
 good=$(sed -n 's/^ℹ pass \([0-9]*\)$/\1/p' "$log" | tail -n1)
 bad=$(sed -n 's/^ℹ fail \([0-9]*\)$/\1/p' "$log" | tail -n1)

@@ -62,9 +62,18 @@ try {
     await shoot("network", (path) => page.locator(".network-view").screenshot({ path }));
     await shoot("arena", (path) => page.locator(".arena-view").screenshot({ path }));
     await shoot("monitor", (path) => page.locator(".bottom-panel").screenshot({ path }));
+    // The plot enlarged over the editor, as one studies it.
     await page.locator('.bottom-tab[data-pane="plot"]').click();
+    await page.locator(".bottom-size").click();
     await sleep(600);
     await shoot("plot", (path) => page.locator(".bottom-panel").screenshot({ path }));
+    await page.locator(".bottom-size").click();
+    // The help on robot 1's own description.
+    await page.keyboard.press("F1");
+    await page.locator('.help-section-tab[data-section="robot"]').click();
+    await page.locator(".help-variables").waitFor();
+    await shoot("help", (path) => page.locator(".help-panel").screenshot({ path }));
+    await page.keyboard.press("Escape");
     if (page.errors.length) {
         console.log(`the page reported errors: ${page.errors.join("; ")}`);
         failed++;

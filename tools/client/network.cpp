@@ -24,6 +24,19 @@ bool description_complete(const Description &header, const TargetDescription &pa
            parts.native_functions.size() == header.native_functions_count;
 }
 
+// Where the VM stopped, for the run-time errors that stop it; an event
+// killed by the next one does not stop it.
+std::optional<uint16_t> stopping_error_pc(const Message &message)
+{
+    if (const auto *bounds = std::get_if<ArrayAccessOutOfBounds>(&message))
+        return bounds->pc;
+    if (const auto *division = std::get_if<DivisionByZero>(&message))
+        return division->pc;
+    if (const auto *specific = std::get_if<NodeSpecificError>(&message))
+        return specific->pc;
+    return std::nullopt;
+}
+
 } // namespace
 
 std::string ExecutionState::name() const
@@ -106,6 +119,10 @@ void Network::update_model(size_t target, const Frame &frame, const Message &mes
         assembly.parts.variables_size = header->variables_size;
     } else if (const auto *state = std::get_if<ExecutionStateChanged>(&message)) {
         node.execution = ExecutionState{ state->pc, state->flags };
+    } else if (std::optional<uint16_t> pc = stopping_error_pc(message)) {
+        // The VM stops at a run-time error (vm.c, as the reference VM does)
+        // and reports the error, not its new state.
+        node.execution = ExecutionState{ *pc, FLAG_STEP_BY_STEP };
     } else if (auto assembly = assemblies_.find(key); assembly != assemblies_.end()) {
         // Parts arrive in order: variables, local events, natives.
         Description &expected = assembly->second.header;
@@ -548,6 +565,9 @@ void Network::reboot(NodeKey key)
 {
     described_node(key);
     send(key.target, NodeCommand{ NODE_MSG_REBOOT, key.id });
+    // It restarts as its flash says and reports no state of its own until
+    // asked: the state it had is no longer known.
+    nodes_.at(key).execution.reset();
 }
 
 } // namespace aseba::client

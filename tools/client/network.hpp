@@ -240,6 +240,7 @@ class Network
     void emit(uint16_t event_id, const std::vector<int16_t> &arguments);
 
     // WRITE_BYTECODE and REBOOT: no answer is defined, so none is awaited.
+    // After REBOOT the node's execution state is unknown until it says it.
     void write_bytecode(NodeKey key);
     void reboot(NodeKey key);
 

@@ -431,6 +431,17 @@ void IdeServer::on_network(std::function<Json(client::Network &)> work,
 
 void IdeServer::links_changed(std::vector<LinkStatus> &&links)
 {
+    // Said in the terminal too: whoever started the IDE learns there that a
+    // target is wrong, without opening the page.
+    for (size_t i = 0; i < links.size(); i++) {
+        const LinkStatus &link = links[i];
+        const LinkStatus *before = i < links_.size() ? &links_[i] : nullptr;
+        if (link.up && before && !before->up)
+            std::cerr << "aseba-ide: " << link.target << ": connected\n";
+        else if (!link.up && !link.error.empty() &&
+                 (!before || before->up || before->error != link.error))
+            std::cerr << "aseba-ide: " << link.target << ": " << link.error << " (trying again)\n";
+    }
     links_ = std::move(links);
     Json json = Json::array();
     for (const LinkStatus &link : links_)
@@ -845,9 +856,15 @@ void IdeServer::handle(ConnectionId connection, uint64_t id, ControlRequest &req
               bool ok = results[i]["ok"].get<bool>();
               all_ok = all_ok && ok;
               auto robot = robots_.find(robots[i]);
-              if (!ok || action != Action::store || robot == robots_.end())
+              if (!ok || robot == robots_.end())
                   continue;
-              robot->second.program_stored = robot->second.program != nullptr;
+              if (action == Action::store)
+                  robot->second.program_stored = robot->second.program != nullptr;
+              // Rebooted, it runs what its flash holds, not what we loaded.
+              else if (action == Action::reboot && !robot->second.program_stored)
+                  robot->second.program.reset();
+              else
+                  continue;
               broadcast({ { "type", "robot" }, { "robot", robot_json(robot->second) } },
                         Delivery::essential);
           }

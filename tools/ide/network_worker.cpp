@@ -15,6 +15,8 @@ namespace
 
 // How long one poll may wait for bytes: the delay before a queued task runs.
 constexpr client::Milliseconds POLL_PERIOD{ 10 };
+// How often a robot whose execution state is unknown is asked for it.
+constexpr client::Milliseconds STATE_QUESTION_PERIOD{ 1000 };
 
 // What the IDE shows of a node, as text, to tell when it changed.
 std::string robot_signature(const client::Node &node, bool alive)
@@ -25,6 +27,14 @@ std::string robot_signature(const client::Node &node, bool alive)
         signature +=
           ":" + std::to_string(node.execution->pc) + "/" + std::to_string(node.execution->flags);
     return signature;
+}
+
+// A link's failure without the target it starts with: the target is
+// shown beside it.
+std::string without_target(const std::string &reason, const std::string &target)
+{
+    std::string prefix = target + ": ";
+    return reason.starts_with(prefix) ? reason.substr(prefix.size()) : reason;
 }
 
 } // namespace
@@ -43,15 +53,16 @@ NetworkWorker::NetworkWorker(asio::io_context &reports_context,
     network_->set_link_listener(
       [this](size_t target, client::LinkState state, const std::string &reason) {
           links_.at(target).up = state == client::LinkState::up;
-          links_.at(target).error = reason;
+          links_.at(target).error = without_target(reason, network_->target_name(target));
       });
     // Targets that cannot be reached now are tried again by the Network;
     // only a malformed target string throws, before the thread starts.
     for (const std::string &target : targets_) {
         size_t index = network_->connect(target, client::LinkPolicy::reconnect);
-        links_.push_back(LinkStatus{ target,
-                                     network_->link_state(index) == client::LinkState::up,
-                                     network_->link_error(index) });
+        links_.push_back(
+          LinkStatus{ target,
+                      network_->link_state(index) == client::LinkState::up,
+                      without_target(network_->link_error(index), network_->target_name(index)) });
     }
     thread_ = std::thread([this] { run(); });
 }
@@ -182,14 +193,24 @@ void NetworkWorker::report_robots()
     for (NodeKey key : keys) {
         const client::Node &node = network_->node(key);
         bool alive = network_->is_alive(key);
+        // A robot running since before we came, or rebooted, says how it
+        // runs only when asked, again until it answers (a rebooting robot
+        // does not hear); its answer updates the model like any other.
+        if (node.described && node.compatible && !node.execution && alive) {
+            auto now = client::Clock::now();
+            auto [asked, first] = state_asked_.try_emplace(key, now);
+            if (first || now - asked->second >= STATE_QUESTION_PERIOD) {
+                asked->second = now;
+                network_->send(key.target,
+                               client::NodeCommand{ NODE_MSG_GET_EXECUTION_STATE, key.id });
+            }
+        } else {
+            state_asked_.erase(key);
+        }
         std::string signature = robot_signature(node, alive);
         auto [entry, is_new] = reported_robots_.try_emplace(key, signature);
         if (!is_new && entry->second == signature)
             continue;
-        // A robot running since before we came says how it runs only when
-        // asked; its answer updates the model like any other.
-        if (node.described && node.compatible && !node.execution && alive)
-            network_->send(key.target, client::NodeCommand{ NODE_MSG_GET_EXECUTION_STATE, key.id });
         entry->second = signature;
         RobotSnapshot snapshot{ key,
                                 node.described,
@@ -206,6 +227,7 @@ void NetworkWorker::report_robots()
         if (std::find(keys.begin(), keys.end(), entry->first) == keys.end()) {
             report(
               [key = entry->first](const NetworkReports &reports) { reports.robot_gone(key); });
+            state_asked_.erase(entry->first);
             entry = reported_robots_.erase(entry);
         } else {
             ++entry;

@@ -109,6 +109,8 @@ class NetworkWorker
     bool serving_ = true; // false once stopping: tasks get no network
     std::vector<client::ReceivedFrame> heard_;
     std::map<NodeKey, std::string> reported_robots_; // key -> what was last reported
+    // Robots of unknown execution state -> when they were last asked for it.
+    std::map<NodeKey, client::Clock::time_point> state_asked_;
     std::vector<LinkStatus> links_;
     std::string links_reported_;
     client::Clock::time_point next_variables_read_{};

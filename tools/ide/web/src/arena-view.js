@@ -2,7 +2,8 @@
 // with each robot's position, heading and LEDs, live from `arena-state`.
 // Clicking a robot opens its tab. Shown only when the server has an arena.
 
-import { h } from "./dom.js";
+import { h, button, setChildren, iconElement } from "./dom.js";
+import { icons } from "./icons.js";
 
 const WALL_CM = 1.5;
 const LED_OFF = "#3a3f46";
@@ -19,20 +20,37 @@ export class ArenaView {
         this.onSelect = onSelect;
         this.active = null;
         this.drawPending = false;
+        // Robots whose label the last drawing had room for.
+        this.labelsShown = 0;
         this.canvas = h("canvas", {
             class: "arena-canvas",
             attrs: { role: "img", "aria-label": "The arena seen from above" },
         });
         this.time = h("span", { class: "section-summary" });
         this.legend = h("div", { class: "arena-legend" });
+        this.enlarged = false;
+        this.sizeButton = button({
+            icon: icons.enlarge,
+            label: "Enlarge the arena view",
+            className: "icon-only small arena-size",
+            onClick: () => this.setEnlarged(!this.enlarged),
+        });
         this.element = h(
             "section",
             { class: "sidebar-section arena-view", attrs: { "aria-label": "Arena" } },
-            h("h2", { class: "section-title" }, h("span", { text: "Arena" }), this.time),
+            h(
+                "h2",
+                { class: "section-title" },
+                h("span", { text: "Arena" }),
+                h("span", { class: "section-tools" }, this.time, this.sizeButton),
+            ),
             h("div", { class: "arena-frame" }, this.canvas),
             this.legend,
         );
         container.append(this.element);
+        this.element.addEventListener("keydown", (event) => {
+            if (event.key === "Escape" && this.enlarged) this.setEnlarged(false);
+        });
         this.canvas.addEventListener("click", (event) => {
             const robot = this.robotAt(event);
             if (robot) this.onSelect(robot.robot);
@@ -57,6 +75,18 @@ export class ArenaView {
 
     setActive(name) {
         this.active = name;
+        this.requestDraw();
+    }
+
+    // Enlarged, the view covers most of the page, over the editor: a
+    // hundred robots get room for their labels.
+    setEnlarged(enlarged) {
+        this.enlarged = enlarged;
+        this.element.classList.toggle("enlarged", enlarged);
+        const label = enlarged ? "Shrink the arena view back into the side panel" : "Enlarge the arena view";
+        this.sizeButton.setAttribute("aria-label", label);
+        this.sizeButton.title = label;
+        setChildren(this.sizeButton, iconElement(enlarged ? icons.shrink : icons.enlarge));
         this.requestDraw();
     }
 
@@ -89,8 +119,15 @@ export class ArenaView {
     // The transform from arena cm (y up) to canvas pixels.
     geometry() {
         const arena = this.model.arena;
-        const width = this.canvas.parentElement.clientWidth;
+        const frame = this.canvas.parentElement;
         const margin = 4;
+        // Enlarged, the whole arena fits the frame's height too.
+        const width = this.enlarged
+            ? Math.min(
+                  frame.clientWidth,
+                  Math.floor(((frame.clientHeight - 2 * margin) * arena.width) / arena.height + 2 * margin),
+              )
+            : frame.clientWidth;
         const scale = (width - 2 * margin) / arena.width;
         const height = Math.round(arena.height * scale + 2 * margin);
         return { width, height, scale, x: (x) => margin + x * scale, y: (y) => margin + (arena.height - y) * scale };
@@ -115,8 +152,9 @@ export class ArenaView {
         if (this.canvas.width !== Math.round(g.width * ratio) || this.canvas.height !== Math.round(g.height * ratio)) {
             this.canvas.width = Math.round(g.width * ratio);
             this.canvas.height = Math.round(g.height * ratio);
-            this.canvas.style.height = `${g.height}px`;
         }
+        this.canvas.style.width = `${g.width}px`;
+        this.canvas.style.height = `${g.height}px`;
         const context = this.canvas.getContext("2d");
         context.setTransform(ratio, 0, 0, ratio, 0, 0);
         context.clearRect(0, 0, g.width, g.height);
@@ -132,7 +170,44 @@ export class ArenaView {
 
         const state = this.model.arenaState;
         this.time.textContent = state ? `t = ${state.time.toFixed(1)} s` : "waiting for positions…";
-        for (const robot of state?.robots ?? []) this.drawRobot(context, g, robot, arena.robotRadius ?? 3.7);
+        const radius = arena.robotRadius ?? 3.7;
+        const robots = state?.robots ?? [];
+        for (const robot of robots) this.drawRobot(context, g, robot, radius);
+        this.drawLabels(context, g, robots, radius);
+    }
+
+    // Each robot's id above it, unless it would cover a label already
+    // drawn (robots in a crowd): the selected robot's first, then by id.
+    drawLabels(context, g, robots, radius) {
+        context.font = "600 11px system-ui, sans-serif";
+        context.textAlign = "center";
+        context.textBaseline = "bottom";
+        context.lineWidth = 3;
+        const placed = [];
+        const order = [...robots].sort(
+            (a, b) => Number(b.robot === this.active) - Number(a.robot === this.active) || a.id - b.id,
+        );
+        for (const robot of order) {
+            const label = String(this.model.robots.get(robot.robot)?.id ?? robot.id ?? robot.robot);
+            const cx = g.x(robot.x);
+            const bottom = g.y(robot.y) - Math.max(5, radius * g.scale) - 2;
+            const width = context.measureText(label).width + 4;
+            const box = { left: cx - width / 2, right: cx + width / 2, top: bottom - 12, bottom };
+            const overlaps = placed.some(
+                (other) =>
+                    box.left < other.right &&
+                    other.left < box.right &&
+                    box.top < other.bottom &&
+                    other.top < box.bottom,
+            );
+            if (overlaps) continue;
+            placed.push(box);
+            context.strokeStyle = "rgba(0, 0, 0, 0.7)";
+            context.strokeText(label, cx, bottom);
+            context.fillStyle = "#ffffff";
+            context.fillText(label, cx, bottom);
+        }
+        this.labelsShown = placed.length;
     }
 
     drawArea(context, g, area) {
@@ -247,15 +322,5 @@ export class ArenaView {
             context.fillStyle = LED_ON;
             context.fill();
         }
-
-        const label = String(this.model.robots.get(robot.robot)?.id ?? robot.id ?? robot.robot);
-        context.font = "600 11px system-ui, sans-serif";
-        context.textAlign = "center";
-        context.textBaseline = "bottom";
-        context.lineWidth = 3;
-        context.strokeStyle = "rgba(0, 0, 0, 0.7)";
-        context.strokeText(label, cx, cy - r - 2);
-        context.fillStyle = "#ffffff";
-        context.fillText(label, cx, cy - r - 2);
     }
 }

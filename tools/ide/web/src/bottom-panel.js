@@ -1,7 +1,8 @@
 // The bottom panel: Events (global events, sending one, the monitor), Plot
 // and Constants, as tabs.
 
-import { h } from "./dom.js";
+import { h, button, setChildren, iconElement } from "./dom.js";
+import { icons } from "./icons.js";
 import { EventMonitor } from "./event-monitor.js";
 import { DefinitionList, EventSender } from "./definitions.js";
 import { PlotPanel } from "./plot-panel.js";
@@ -31,13 +32,31 @@ export class BottomPanel {
             pane.setAttribute("role", "tabpanel");
             pane.setAttribute("aria-label", titles[key]);
         }
+        this.container = container;
+        this.sizeButton = button({
+            icon: icons.enlarge,
+            text: "Enlarge",
+            label: "Enlarge the bottom panel (the plot, the monitor) over the editor",
+            className: "small bottom-size",
+            onClick: () => this.setEnlarged(!this.enlarged),
+        });
         this.element = h(
             "section",
             { class: "bottom-panel" },
-            h("div", { class: "bottom-tabs", attrs: { role: "tablist", "aria-label": "Bottom panel" } }, this.tabs),
+            h(
+                "div",
+                { class: "bottom-tabs" },
+                h(
+                    "div",
+                    { class: "bottom-tab-list", attrs: { role: "tablist", "aria-label": "Bottom panel" } },
+                    this.tabs,
+                ),
+                this.sizeButton,
+            ),
             h("div", { class: "bottom-body" }, Object.values(panes)),
         );
         container.append(this.element);
+        this.enlarged = false;
 
         const eventSide = h("div", { class: "events-side" });
         panes.events.append(eventSide);
@@ -56,6 +75,25 @@ export class BottomPanel {
         panes.constants.append(constantsBox);
         this.constants = new DefinitionList(constantsBox, { kind: "constants", model, commands, messages });
         this.show(loadSetting("bottom-tab", "events"));
+    }
+
+    // Enlarged, the panel takes the height of the editor but for the robot
+    // tabs and toolbar; the page remembers neither: the editor comes back
+    // at the next visit.
+    setEnlarged(enlarged) {
+        this.enlarged = enlarged;
+        this.container.parentElement.classList.toggle("bottom-enlarged", enlarged);
+        const label = enlarged
+            ? "Shrink the bottom panel back under the editor"
+            : "Enlarge the bottom panel (the plot, the monitor) over the editor";
+        this.sizeButton.setAttribute("aria-label", label);
+        this.sizeButton.title = label;
+        setChildren(
+            this.sizeButton,
+            iconElement(enlarged ? icons.shrink : icons.enlarge),
+            h("span", { class: "button-text", text: enlarged ? "Shrink" : "Enlarge" }),
+        );
+        this.plot.resize();
     }
 
     show(key) {

@@ -4,6 +4,12 @@
 
 import { download, pickTextFile } from "./dom.js";
 import { compileErrorText, MAX_SCRIPT_BYTES } from "./sessions.js";
+import { rememberProject } from "./storage.js";
+
+// What New project opens: no events, no constants, no programs.
+const EMPTY_PROJECT = "<!DOCTYPE aesl-source>\n<network>\n</network>\n";
+// New project empties every script: a second click within this time does it.
+const NEW_PROJECT_CONFIRM_MS = 6000;
 
 // The server refuses larger projects (docs/ide-protocol.md).
 const MAX_PROJECT_BYTES = 2 * 1024 * 1024;
@@ -31,6 +37,8 @@ export class Commands {
         this.model = model;
         this.sessions = sessions;
         this.messages = messages;
+        // When New project was first clicked (0: not lately).
+        this.newProjectAsked = 0;
     }
 
     readyNames() {
@@ -143,11 +151,47 @@ export class Commands {
     async openProject() {
         const file = await pickTextFile(".aesl,.xml,application/xml,text/xml");
         if (!file) return;
+        if (await this.openProjectText(file.name, file.text)) rememberProject(file.name, file.text);
+    }
+
+    // A project opened before from this browser (storage.js), as it was then.
+    async openRecentProject(entry) {
+        if (await this.openProjectText(entry.name, entry.content)) rememberProject(entry.name, entry.content);
+    }
+
+    // Empties the project of every tab, at the second call within a few
+    // seconds: the first says what it will do (no dialog).
+    async newProject() {
+        if (!this.newProjectAsked || Date.now() - this.newProjectAsked > NEW_PROJECT_CONFIRM_MS) {
+            this.newProjectAsked = Date.now();
+            this.messages.warning(
+                "New project: every robot's script, the global events and the constants will be emptied, for every tab. Click New again to go on (.aesl downloads the current project first).",
+            );
+            return false;
+        }
+        this.newProjectAsked = 0;
+        try {
+            await this.connection.request({ type: "open-project", name: "new.aesl", content: EMPTY_PROJECT });
+            // The server keeps a robot's script that no program replaced: the
+            // editors are emptied here, as an edit (Ctrl+Z takes it back),
+            // and the other tabs follow.
+            for (const session of this.sessions.all()) session.setText("");
+            this.messages.success("New project: every script is empty (Ctrl+Z in an editor takes its text back).");
+            return true;
+        } catch (error) {
+            this.messages.error(`No new project: ${error.message}`);
+            return false;
+        }
+    }
+
+    /** @param {string} name @param {string} text */
+    async openProjectText(name, text) {
+        const file = { name, text };
         if (new TextEncoder().encode(file.text).length > MAX_PROJECT_BYTES) {
             this.messages.error(
                 `${file.name} is larger than ${MAX_PROJECT_BYTES / 1024 / 1024} MB: it is not an Aseba project.`,
             );
-            return;
+            return false;
         }
         try {
             const reply = await this.connection.request({ type: "open-project", name: file.name, content: file.text });
@@ -158,8 +202,10 @@ export class Commands {
                 `Opened ${file.name}: ${plural(reply.matched.length, "robot")} got ${reply.matched.length === 1 ? "its" : "their"} program.`,
                 details,
             );
+            return true;
         } catch (error) {
             this.messages.error(`Cannot open ${file.name}: ${error.message}`);
+            return false;
         }
     }
 

@@ -12,6 +12,7 @@ import { loadSetting, saveSetting } from "./storage.js";
  * @property {import("./network-view.js").NetworkView} network
  * @property {import("./arena-view.js").ArenaView} arena
  * @property {import("./bottom-panel.js").BottomPanel} bottom
+ * @property {import("./help-panel.js").HelpPanel} help
  */
 
 export class Controller {
@@ -61,11 +62,12 @@ export class Controller {
     // Shows robot `name` in every view.
     /** @param {string} name */
     select(name) {
-        const { robotPanel, tabs, network, arena } = this.views;
+        const { robotPanel, tabs, network, arena, help } = this.views;
         robotPanel.show(name);
         tabs.setActive(name);
         network.setActive(name);
         arena.setActive(name);
+        help.robotChanged();
         saveSetting("active-robot", name);
         this.updateWatch();
     }
@@ -85,12 +87,14 @@ export class Controller {
         });
     }
 
-    // The line where a robot stands, in its editor.
+    // The line where a robot stands in an event, in its editor. A robot
+    // stopped outside any event (Stop, a run-time error, an event's end
+    // stepped through) stands at no line.
     showExecution(robot) {
         const session = this.sessions.get(robot.robot);
         if (!session) return;
-        const stopped = robot.present && (robot.state === "stepping" || robot.state === "stopped");
-        const line = stopped ? (robot.line ?? 0) : 0;
+        const inEvent = robot.present && robot.state === "stepping";
+        const line = inEvent ? (robot.line ?? 0) : 0;
         if (session.executionLine === line) return;
         session.executionLine = line;
         session.setExecutionLine(line);

@@ -144,6 +144,59 @@ export function breakpointStatus(results) {
     return { effects: breakpointStatusEffect.of(statuses) };
 }
 
+// Toggles the breakpoint of the cursor's line (Ctrl+B, as in Aseba Studio).
+/** @param {EditorView} view */
+export function toggleBreakpointAtCursor(view) {
+    const line = view.state.doc.lineAt(view.state.selection.main.head);
+    view.dispatch({ effects: toggleBreakpointEffect.of(line.from) });
+}
+
+// Removes every breakpoint of the script; false when it had none.
+/** @param {EditorView} view */
+export function clearBreakpoints(view) {
+    const effects = [];
+    const cursor = view.state.field(breakpointField).iter();
+    for (; cursor.value; cursor.next()) effects.push(toggleBreakpointEffect.of(cursor.from));
+    if (effects.length) view.dispatch({ effects });
+    return effects.length > 0;
+}
+
+// --- comments ------------------------------------------------------------------
+
+// The lines the selection touches, each once.
+function selectedLines(state) {
+    const lines = new Map();
+    for (const range of state.selection.ranges) {
+        const first = state.doc.lineAt(range.from).number;
+        // A selection ending at a line's start does not take that line.
+        let last = state.doc.lineAt(range.to).number;
+        if (last > first && state.doc.lineAt(range.to).from === range.to) last--;
+        for (let number = first; number <= last; number++) lines.set(number, state.doc.line(number));
+    }
+    return [...lines.values()];
+}
+
+// Ctrl+D, as in Aseba Studio: a # at the start of each selected line.
+/** @param {EditorView} view */
+export function commentLines(view) {
+    const changes = selectedLines(view.state).map((line) => ({ from: line.from, insert: "#" }));
+    view.dispatch({ changes, userEvent: "input.comment" });
+    return true;
+}
+
+// Ctrl+Shift+D: the # that starts each selected line goes (indented ones
+// too); a block comment's #* stays, its end would be left alone.
+/** @param {EditorView} view */
+export function uncommentLines(view) {
+    const changes = [];
+    for (const line of selectedLines(view.state)) {
+        const match = /^\s*#(?!\*)/.exec(line.text);
+        if (match) changes.push({ from: line.from + match[0].length - 1, to: line.from + match[0].length });
+    }
+    if (changes.length) view.dispatch({ changes, userEvent: "delete.uncomment" });
+    return true;
+}
+
 // Clicking beside a line toggles its breakpoint; `onToggle(view)` follows.
 function breakpointGutter(onToggle) {
     return gutter({
@@ -308,12 +361,26 @@ export function editorExtensions(hooks) {
         aseba(hooks.namesOf),
         theme,
         keymap.of([
+            // Aseba Studio's keys first: Ctrl+D is also CodeMirror's "select
+            // the next occurrence".
+            {
+                key: "Mod-b",
+                preventDefault: true,
+                run: (view) => {
+                    toggleBreakpointAtCursor(view);
+                    hooks.onBreakpointsChanged(view);
+                    return true;
+                },
+            },
+            { key: "Mod-d", preventDefault: true, run: commentLines },
+            { key: "Shift-Mod-d", preventDefault: true, run: uncommentLines },
             ...closeBracketsKeymap,
             ...defaultKeymap,
             ...searchKeymap,
             ...historyKeymap,
             ...completionKeymap,
-            ...lintKeymap,
+            // F8 is Studio's Reset all (keys.js).
+            ...lintKeymap.filter((binding) => binding.key !== "F8"),
             indentWithTab,
         ]),
         EditorView.updateListener.of((update) => {

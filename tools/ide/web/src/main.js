@@ -19,6 +19,8 @@ import { RobotPanel } from "./robot-panel.js";
 import { BottomPanel } from "./bottom-panel.js";
 import { splitter } from "./layout.js";
 import { Controller } from "./controller.js";
+import { HelpPanel } from "./help-panel.js";
+import { installKeys } from "./keys.js";
 
 const root = document.getElementById("app");
 const scheme = location.protocol === "https:" ? "wss" : "ws";
@@ -40,7 +42,9 @@ root.append(topArea);
 const messages = new MessageBar(root);
 const commands = new Commands({ connection, model, sessions, messages });
 const controller = new Controller({ connection, model, sessions, commands, messages });
-new TopBar(topArea, { connection, model, commands });
+const help = new HelpPanel(root, { model, robotShown: () => robotPanel?.robotName ?? null });
+new TopBar(topArea, { connection, model, commands, help });
+installKeys({ commands, help });
 
 const sidebar = h("aside", { class: "sidebar", attrs: { "aria-label": "Network and arena" } });
 const main = h("main", { class: "main-area" });
@@ -79,17 +83,22 @@ main.append(
         min: 120,
         max: () => window.innerHeight * 0.7,
         setting: "bottom-height",
-        initial: Math.round(Math.min(300, Math.max(180, window.innerHeight * 0.3))),
+        // Room for the plot (or the monitor) and the editor both.
+        initial: Math.round(Math.min(420, Math.max(260, window.innerHeight * 0.38))),
         label: "Resize the bottom panel",
     }),
     bottomArea,
 );
 const bottom = new BottomPanel(bottomArea, { model, commands, messages });
+// The message bar stays above the bottom panel, whatever its height.
+new ResizeObserver(() =>
+    document.documentElement.style.setProperty("--bottom-area-height", `${bottomArea.offsetHeight}px`),
+).observe(bottomArea);
 
 // For the browser tests, which open the page as /?test
 // (tests/ide/harness.mjs): the page's parts, read-only by convention.
 if (new URLSearchParams(location.search).has("test"))
-    window.asebaIde = { connection, model, sessions, commands, robotPanel, bottom, controller };
+    window.asebaIde = { connection, model, sessions, commands, robotPanel, bottom, controller, help };
 
 // The server's messages, to the parts of the page.
-controller.start({ robotPanel, tabs, network, arena, bottom });
+controller.start({ robotPanel, tabs, network, arena, bottom, help });

@@ -1,12 +1,15 @@
-// The message bar under the top bar: what the server refused, what a
-// command did. Never a modal dialog: errors stay until closed, other
-// messages go by themselves.
+// The message bar, at the right above the bottom panel (whose monitor it
+// must not hide): what the server refused, what a command did. Never a modal
+// dialog: every message goes by itself, errors and warnings after long
+// enough to be read and never while the pointer is on them; at most a few
+// at once, the oldest going first.
 
 import { h, iconElement } from "./dom.js";
 import { icons } from "./icons.js";
 
 const INFO_DURATION_MS = 4000;
-const MAX_MESSAGES = 5;
+const ERROR_DURATION_MS = 15000;
+const MAX_MESSAGES = 3;
 
 export class MessageBar {
     constructor(container) {
@@ -41,7 +44,13 @@ export class MessageBar {
         );
         this.element.append(message);
         while (this.element.children.length > MAX_MESSAGES) this.element.firstElementChild.remove();
-        if (kind !== "error" && kind !== "warning") setTimeout(() => message.remove(), INFO_DURATION_MS);
+        const duration = kind === "error" || kind === "warning" ? ERROR_DURATION_MS : INFO_DURATION_MS;
+        let timer = setTimeout(() => message.remove(), duration);
+        message.addEventListener("pointerenter", () => clearTimeout(timer));
+        message.addEventListener("pointerleave", () => {
+            clearTimeout(timer);
+            timer = setTimeout(() => message.remove(), INFO_DURATION_MS);
+        });
         return message;
     }
 

@@ -30,18 +30,23 @@ export class NetworkView {
         });
         this.waiting = h("div", { class: "waiting-programs" });
         this.empty = h("div", { class: "panel-note", text: "No robot on the network yet." });
+        this.linkProblems = h("div", { class: "link-problems", attrs: { role: "status" } });
         this.element = h(
             "section",
             { class: "sidebar-section network-view", attrs: { "aria-label": "Network" } },
             h("h2", { class: "section-title" }, h("span", { text: "Network" }), this.summary),
             this.filter,
+            this.linkProblems,
             this.empty,
             this.list,
             this.waiting,
         );
         container.append(this.element);
         model.on("robots", () => this.render());
-        model.on("links", () => this.render());
+        model.on("links", () => {
+            this.render();
+            this.renderLinkProblems();
+        });
         model.on("robot", (robot) => {
             this.updateRow(robot.robot);
             this.renderSummary();
@@ -129,6 +134,23 @@ export class NetworkView {
         const present = robots.filter((robot) => robot.present).length;
         const running = robots.filter((robot) => robot.present && robot.state === "running").length;
         this.summary.textContent = robots.length ? `${present} online · ${running} running` : "";
+    }
+
+    // Each network the server cannot reach, with the reason in full.
+    renderLinkProblems() {
+        const down = this.model.links.filter((link) => !link.up && link.error && link.error !== "connecting");
+        setChildren(
+            this.linkProblems,
+            down.map((link) =>
+                h(
+                    "div",
+                    { class: "link-problem", dataset: { target: link.target } },
+                    h("strong", { text: link.target }),
+                    h("span", { text: ` cannot be reached: ${link.error}. The IDE tries again by itself.` }),
+                ),
+            ),
+        );
+        this.linkProblems.hidden = down.length === 0;
     }
 
     renderWaiting() {

@@ -8,9 +8,10 @@ import { openSearchPanel, gotoLine } from "@codemirror/search";
 import { h, button, setChildren } from "./dom.js";
 import { icons } from "./icons.js";
 import { robotState, STATE_TEXT } from "./model.js";
-import { tokenRange } from "./editor.js";
+import { tokenRange, clearBreakpoints } from "./editor.js";
 import { VariablesPanel } from "./variables-panel.js";
 import { RobotInfoPanel } from "./robot-info.js";
+import { CameraStrip } from "./camera-strip.js";
 
 const ROBOT_ACTIONS = [
     {
@@ -91,6 +92,15 @@ export class RobotPanel {
                 className: "icon-only",
                 onClick: () => this.withView(gotoLine),
             }),
+            button({
+                icon: icons.breakpointsOff,
+                label: "Clear all breakpoints of this script",
+                className: "icon-only clear-breakpoints",
+                onClick: () =>
+                    this.withView((view) => {
+                        if (clearBreakpoints(view)) this.session?.sendBreakpoints();
+                    }),
+            }),
         ];
         this.toolbar = h(
             "div",
@@ -117,10 +127,14 @@ export class RobotPanel {
             this.programStatus,
         );
 
+        const cameraHost = h("div", { class: "camera-host" });
+        this.camera = new CameraStrip(cameraHost);
         const sideTabs = h("div", { class: "side-tabs", attrs: { role: "tablist", "aria-label": "Robot details" } });
         const sideBody = h("div", { class: "side-body" });
         this.variables = new VariablesPanel(sideBody, {
             onSet: (robot, name, index, values) => commands.setVariable(robot, name, index, values),
+            label: (robot) => model.label(robot),
+            messages: commands.messages,
         });
         this.events = new RobotInfoPanel(sideBody, "events");
         this.natives = new RobotInfoPanel(sideBody, "natives");
@@ -163,7 +177,7 @@ export class RobotPanel {
                 "div",
                 { class: "robot-body" },
                 h("div", { class: "editor-column" }, this.editorHost, statusBar),
-                h("aside", { class: "side-panel" }, sideTabs, sideBody),
+                h("aside", { class: "side-panel" }, cameraHost, sideTabs, sideBody),
             ),
         );
         this.element = h(
@@ -224,13 +238,16 @@ export class RobotPanel {
 
     // A `variables` message.
     showValues(message) {
-        if (message.robot === this.robotName) this.variables.setValues(message.values);
+        if (message.robot !== this.robotName) return;
+        this.variables.setValues(message.values);
+        this.camera.setValues(message.values);
     }
 
     renderRobot() {
         const robot = this.robotName ? this.model.robots.get(this.robotName) : null;
         if (!robot) {
             this.variables.setRobot(null);
+            this.camera.setRobot(null);
             this.events.setRobot(null);
             this.natives.setRobot(null);
             return;
@@ -246,6 +263,7 @@ export class RobotPanel {
             element.disabled = !ready && action !== "copy";
         this.element.classList.toggle("offline", !robot.present);
         this.variables.setRobot(robot);
+        this.camera.setRobot(robot);
         this.events.setRobot(robot);
         this.natives.setRobot(robot);
         this.renderStatus();

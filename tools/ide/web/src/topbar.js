@@ -3,22 +3,23 @@
 
 import { h, button, setChildren } from "./dom.js";
 import { icons } from "./icons.js";
+import { loadRecentProjects } from "./storage.js";
 
 const GROUP_ACTIONS = [
     {
         action: "load",
         icon: icons.load,
         text: "Load all",
-        label: "Load all: compile every robot's script and load it, then run",
+        label: "Load all (F7): compile every robot's script and load it, then run",
     },
-    { action: "run", icon: icons.run, text: "Run all", label: "Run all robots" },
-    { action: "pause", icon: icons.pause, text: "Pause all", label: "Pause all robots" },
+    { action: "run", icon: icons.run, text: "Run all", label: "Run all robots (F9)" },
+    { action: "pause", icon: icons.pause, text: "Pause all", label: "Pause all robots (F10)" },
     { action: "stop", icon: icons.stop, text: "Stop all", label: "Stop all robots" },
     {
         action: "reset",
         icon: icons.reset,
         text: "Reset all",
-        label: "Reset all robots: restart their programs from the start",
+        label: "Reset all robots (F8): restart their programs from the start",
     },
     {
         action: "store",
@@ -30,9 +31,10 @@ const GROUP_ACTIONS = [
 ];
 
 export class TopBar {
-    constructor(container, { connection, model, commands }) {
+    constructor(container, { connection, model, commands, help }) {
         this.connection = connection;
         this.model = model;
+        this.commands = commands;
         this.pageState = h("div", {
             class: "connection-state",
             attrs: { role: "status" },
@@ -41,7 +43,7 @@ export class TopBar {
         this.linkStates = h("div", { class: "link-states" });
         this.projectName = h("span", { class: "project-name" });
 
-        const groupButtons = GROUP_ACTIONS.map((entry) =>
+        this.groupButtons = GROUP_ACTIONS.map((entry) =>
             button({
                 icon: entry.icon,
                 text: entry.text,
@@ -67,11 +69,32 @@ export class TopBar {
                 "div",
                 { class: "toolbar project-toolbar", attrs: { role: "toolbar", "aria-label": "Project" } },
                 button({
+                    icon: icons.add,
+                    text: "New",
+                    label: "New project: empty scripts, no events, no constants (click twice)",
+                    onClick: () => commands.newProject(),
+                }),
+                button({
                     icon: icons.open,
                     text: "Open",
                     label: "Open project: an .aesl file from this computer",
                     onClick: () => commands.openProject(),
                 }),
+                h(
+                    "div",
+                    { class: "recent-projects" },
+                    (this.recentButton = button({
+                        icon: icons.collapse,
+                        label: "Open a recent project: one opened before from this browser",
+                        className: "icon-only recent-button",
+                        onClick: () => this.toggleRecent(),
+                    })),
+                    (this.recentMenu = h("div", {
+                        class: "recent-menu",
+                        attrs: { role: "menu", "aria-label": "Recent projects" },
+                        hidden: true,
+                    })),
+                ),
                 button({
                     icon: icons.save,
                     text: "Save",
@@ -88,9 +111,21 @@ export class TopBar {
             h(
                 "div",
                 { class: "toolbar group-toolbar", attrs: { role: "toolbar", "aria-label": "Whole group" } },
-                groupButtons,
+                this.groupButtons,
             ),
-            h("div", { class: "topbar-status" }, this.linkStates, this.pageState),
+            h(
+                "div",
+                { class: "topbar-status" },
+                this.linkStates,
+                this.pageState,
+                button({
+                    icon: icons.help,
+                    text: "Help",
+                    label: "Help (F1): the keys, the language, this robot's variables, events and functions",
+                    className: "help-button",
+                    onClick: () => help.toggle(),
+                }),
+            ),
         );
         container.append(element);
         this.saveButton = element.querySelector('[aria-label="Save the project"]');
@@ -98,8 +133,11 @@ export class TopBar {
         connection.on("state", () => this.renderPage());
         model.on("links", () => this.renderLinks());
         model.on("project", () => this.renderProject());
+        model.on("robots", () => this.renderGroup());
+        model.on("robot", () => this.renderGroup());
         this.renderPage();
         this.renderProject();
+        this.renderGroup();
         // The countdown to the next attempt.
         setInterval(() => {
             if (connection.state === "waiting") this.renderPage();
@@ -124,7 +162,7 @@ export class TopBar {
         setChildren(
             this.pageState,
             h("span", { class: "dot" }),
-            h("span", { text: `Server: ${text}` }),
+            h("span", {}, h("span", { class: "connection-prefix", text: "Server: " }), text),
             state === "waiting"
                 ? h("button", {
                       type: "button",
@@ -138,6 +176,54 @@ export class TopBar {
         if (state !== "open") this.renderLinks();
     }
 
+    // The projects opened before from this browser, newest first.
+    toggleRecent() {
+        if (!this.recentMenu.hidden) {
+            this.recentMenu.hidden = true;
+            return;
+        }
+        const entries = loadRecentProjects();
+        setChildren(
+            this.recentMenu,
+            entries.length === 0
+                ? h("div", { class: "recent-empty", text: "No project opened from this browser yet." })
+                : null,
+            entries.map((entry) =>
+                h("button", {
+                    type: "button",
+                    class: "recent-entry",
+                    attrs: { role: "menuitem" },
+                    text: entry.name,
+                    title: `Opened ${new Date(entry.time).toLocaleString()}`,
+                    onClick: () => {
+                        this.recentMenu.hidden = true;
+                        this.commands.openRecentProject(entry);
+                    },
+                }),
+            ),
+        );
+        this.recentMenu.hidden = false;
+        const close = (event) => {
+            if (this.recentMenu.parentElement.contains(event.target)) return;
+            this.recentMenu.hidden = true;
+            document.removeEventListener("pointerdown", close, true);
+        };
+        document.addEventListener("pointerdown", close, true);
+    }
+
+    // The group's buttons act on the robots there: none, nothing to do.
+    renderGroup() {
+        const none = this.model.readyRobots().length === 0;
+        for (const element of this.groupButtons) {
+            element.disabled = none;
+            element.title = none
+                ? `${element.getAttribute("aria-label")} (no robot on the network)`
+                : element.getAttribute("aria-label");
+        }
+    }
+
+    // Each network's state in a few words; why one is down is said in full
+    // in the network view (network-view.js), where it has room.
     renderLinks() {
         const open = this.connection.open;
         setChildren(
@@ -155,8 +241,8 @@ export class TopBar {
                         dataset: { target: link.target, up: String(open && link.up) },
                     },
                     h("span", { class: "dot" }),
-                    h("span", { text: link.target }),
-                    open && !link.up ? h("span", { class: "link-error", text: link.error || "down" }) : null,
+                    h("span", { class: "link-target", text: link.target }),
+                    open && !link.up ? h("span", { class: "link-error", text: "unreachable" }) : null,
                 ),
             ),
         );

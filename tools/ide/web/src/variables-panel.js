@@ -3,9 +3,10 @@
 // program's, arrays folded or open, and each value editable in place:
 // Enter writes it to the robot (`set-variable`), Escape gives up.
 
-import { h, setChildren, iconElement } from "./dom.js";
+import { h, button, setChildren, iconElement, download, pickTextFile } from "./dom.js";
 import { icons } from "./icons.js";
 import { parseIntegers } from "./format.js";
+import { memoryFile, memoryWrites } from "./memory-file.js";
 
 // Elements of an open array shown at most (the rest: "…").
 const MAX_ARRAY_ROWS = 256;
@@ -19,9 +20,12 @@ function parseValues(text) {
 }
 
 export class VariablesPanel {
-    // `onSet(robot, name, index, values)` writes to the robot.
-    constructor(container, { onSet }) {
+    // `onSet(robot, name, index, values)` writes to the robot; `label(robot)`
+    // names it; `messages` (messages.js) tells how an import went.
+    constructor(container, { onSet, label, messages }) {
         this.onSet = onSet;
+        this.label = label;
+        this.messages = messages;
         this.robot = null;
         this.layoutKey = "";
         this.values = null;
@@ -36,7 +40,27 @@ export class VariablesPanel {
         });
         this.list = h("div", { class: "variables-list", attrs: { role: "tree", "aria-label": "Variables" } });
         this.note = h("div", { class: "panel-note" });
-        this.element = h("div", { class: "variables-panel" }, this.filter, this.note, this.list);
+        const memoryButtons = [
+            button({
+                icon: icons.download,
+                label: "Export the robot's memory: every variable's value, as a file",
+                className: "icon-only memory-export",
+                onClick: () => this.exportMemory(),
+            }),
+            button({
+                icon: icons.open,
+                label: "Import a memory file: write its variables to the robot",
+                className: "icon-only memory-import",
+                onClick: () => this.importMemory(),
+            }),
+        ];
+        this.element = h(
+            "div",
+            { class: "variables-panel" },
+            h("div", { class: "variables-tools" }, this.filter, memoryButtons),
+            this.note,
+            this.list,
+        );
         container.append(this.element);
     }
 
@@ -59,6 +83,43 @@ export class VariablesPanel {
         if (key === this.layoutKey && !changedRobot) return;
         this.layoutKey = key;
         this.render();
+    }
+
+    exportMemory() {
+        const robot = this.robot;
+        if (!robot || !this.values) {
+            this.messages.warning("No values to export yet: the robot's variables have not been read.");
+            return;
+        }
+        const label = this.label(robot);
+        download(
+            `${label.replace(/[^\w.-]+/g, "-")}-memory.json`,
+            memoryFile(robot, label, this.values),
+            "application/json",
+        );
+    }
+
+    async importMemory() {
+        const robot = this.robot;
+        if (!robot?.present) {
+            this.messages.warning("The robot is not on the network: nothing to write to.");
+            return;
+        }
+        const file = await pickTextFile(".json,application/json");
+        if (!file) return;
+        let plan;
+        try {
+            plan = memoryWrites(robot, file.text);
+        } catch (error) {
+            this.messages.error(`${file.name} not imported: ${error.message}.`);
+            return;
+        }
+        let written = 0;
+        for (const { name, values } of plan.writes) if (await this.onSet(robot.robot, name, 0, values)) written++;
+        const left = plan.left.length
+            ? [`not written (unknown here, or of another size): ${plan.left.join(", ")}`]
+            : [];
+        this.messages.success(`${written} variables of ${file.name} written to ${this.label(robot)}.`, left);
     }
 
     // A `variables` message for the robot shown.
