@@ -59,7 +59,7 @@ DSPIC30_HARNESS_SOURCES := $(filter-out native_functions/nat_dsp_kernel.c,$(sort
                            ports/dspic30/dspic30_dsp_kernel.c ports/dspic30/dspic30_startup.c \
                            ports/dspic30/dspic30_runtime.c ports/dspic30/dspic30_clock.c \
                            ports/dspic30/dspic30_uart.c hal/hal_link_rings.c tests/ports/dspic30/target/harness_main.c \
-                           tests/ports/stm32f4/target/test_natives.c \
+                           tests/ports/stm32f4/target/test_natives.c tests/ports/stm32f4/target/remote_events.c \
                            tests/native_functions_dsp/dsp_fft_truncating_mutant.c ports/dspic30/dspic30_reset.s
 DSPIC30_HARNESS_OBJECTS := $(patsubst %,$(DSPIC30_OUT)/obj/%.o,$(basename $(DSPIC30_HARNESS_SOURCES)))
 DSPIC30_HARNESS_SCRIPT := tests/ports/dspic30/target/harness.gld

@@ -26,6 +26,7 @@
 #include "ports/dspic30/dspic30_chip.h"
 #include "ports/dspic30/dspic30_registers.h"
 #include "tests/ports/stm32f4/remote_protocol.h"
+#include "tests/ports/stm32f4/target/remote_events.h"
 #include "tests/ports/stm32f4/target/test_natives.h"
 
 /* The largest memory each area gets from a test (tests/node's refnode
@@ -189,8 +190,11 @@ static void flush_events(server *s)
     s->event_length = 0;
 }
 
-static void event_bytes(server *s, const void *data, uint16_t count)
+/* The harness's side of remote_events.h: a call's events, sent ahead when
+ * they outgrow their buffer. */
+void remote_event_bytes(void *context, const void *data, uint16_t count)
 {
+    server *s = context;
     const uint8_t *bytes = data;
     uint16_t i;
     for (i = 0; i < count; i++) {
@@ -198,99 +202,6 @@ static void event_bytes(server *s, const void *data, uint16_t count)
             flush_events(s);
         s->events[s->event_length++] = bytes[i];
     }
-}
-
-static void event_byte(server *s, uint8_t value)
-{
-    event_bytes(s, &value, 1);
-}
-
-static void event16(server *s, uint16_t value)
-{
-    event_byte(s, (uint8_t)value);
-    event_byte(s, (uint8_t)(value >> BYTE_BITS));
-}
-
-static void on_emit(void *context, uint16_t event, const int16_t *payload, uint16_t count)
-{
-    server *s = context;
-    uint16_t i;
-    event_byte(s, REMOTE_EVENT_EMIT);
-    event16(s, event);
-    event16(s, count);
-    for (i = 0; i < count; i++)
-        event16(s, (uint16_t)payload[i]);
-}
-
-static void report_words(server *s, uint8_t kind, const uint16_t *words, uint16_t count)
-{
-    uint16_t i;
-    event_byte(s, kind);
-    for (i = 0; i < count; i++)
-        event16(s, words[i]);
-}
-
-/* The VM's word reports, each as its remote event. */
-static void on_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
-{
-    (void)count; /* the VM sends each type's own count (vm.h) */
-    switch (type) {
-    case VM_REPORT_EXECUTION_STATE_CHANGED:
-        report_words(context, REMOTE_EVENT_STATE, words, 2);
-        break;
-    case VM_REPORT_EVENT_EXECUTION_KILLED:
-        report_words(context, REMOTE_EVENT_KILLED, words, 1);
-        break;
-    case VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS:
-        report_words(context, REMOTE_EVENT_ARRAY, words, 3);
-        break;
-    case VM_REPORT_DIVISION_BY_ZERO: report_words(context, REMOTE_EVENT_DIVISION, words, 1); break;
-    default: break;
-    }
-}
-
-static void on_node_error(void *context, uint16_t pc, const char *text)
-{
-    uint8_t length = 0;
-    while (text[length] != '\0' && length < VM_NODE_ERROR_LENGTH)
-        length++;
-    event_byte(context, REMOTE_EVENT_NODE_ERROR);
-    event16(context, pc);
-    event_byte(context, length);
-    event_bytes(context, text, length);
-}
-
-static const vm_callbacks callbacks = { on_emit, on_report, on_node_error };
-
-static void on_send(void *context, const uint8_t *bytes, uint16_t count, bool frame_complete)
-{
-    event_byte(context, REMOTE_EVENT_SEND);
-    event16(context, count);
-    event_byte(context, frame_complete ? 1 : 0);
-    event_bytes(context, bytes, count);
-}
-
-static void on_hook(server *s, uint8_t which)
-{
-    event_byte(s, REMOTE_EVENT_HOOK);
-    event_byte(s, which);
-}
-
-static void on_write_bytecode(void *context, const uint16_t *bytecode, uint16_t size)
-{
-    (void)bytecode;
-    (void)size;
-    on_hook(context, REMOTE_HOOK_WRITE_BYTECODE);
-}
-
-static void on_reboot(void *context)
-{
-    on_hook(context, REMOTE_HOOK_REBOOT);
-}
-
-static void on_suspend(void *context)
-{
-    on_hook(context, REMOTE_HOOK_SUSPEND);
 }
 
 /* --- the machine's memory ---------------------------------------------------------------- */
@@ -452,8 +363,10 @@ static void send_machine(server *s)
 
 static uint8_t open_machine(server *s, uint8_t command)
 {
-    static const node_transport transport = { on_send, &the_server };
-    static const node_hooks hooks = { on_write_bytecode, on_reboot, on_suspend, &the_server };
+    static const node_transport transport = { remote_on_send, &the_server };
+    static const node_hooks hooks = {
+        remote_on_write_bytecode, remote_on_reboot, remote_on_suspend, &the_server
+    };
     uint16_t node_id = take16(s);
     uint8_t kind = take8(s);
     const vm_native_table *natives = NULL;
@@ -478,7 +391,7 @@ static uint8_t open_machine(server *s, uint8_t command)
     if (s->is_node)
         node_init(&s->node, node_id, description, &memory, &transport, &hooks);
     else
-        vm_init(&s->vm, &memory, node_id, natives, &callbacks, s);
+        vm_init(&s->vm, &memory, node_id, natives, &remote_vm_callbacks, s);
     send_header(REMOTE_OK, (uint16_t)(machine_length(s) + (s->is_node ? 2u : 0u)));
     if (s->is_node)
         send16(node_fingerprint(&s->node));

@@ -13,6 +13,7 @@
 #include "ports/stm32f4/stm32f4_registers.h"
 #include "node.h"
 #include "tests/ports/stm32f4/remote_protocol.h"
+#include "remote_events.h"
 #include "test_natives.h"
 
 #define AREA_WORDS              2048u /* largest memory area a test asks for (variables: 1060) */
@@ -68,8 +69,11 @@ static void put16(uint8_t *bytes, uint16_t value)
     bytes[1] = (uint8_t)(value >> BYTE_BITS);
 }
 
-static void event_bytes(server *s, const void *data, uint16_t count)
+/* The harness's side of remote_events.h: a call's events, kept whole for its
+ * answer, or marked as overflowed. */
+void remote_event_bytes(void *context, const void *data, uint16_t count)
 {
+    server *s = context;
     const uint8_t *bytes = data;
     uint16_t i;
     if (s->event_length + count > EVENT_BYTES) {
@@ -80,121 +84,10 @@ static void event_bytes(server *s, const void *data, uint16_t count)
         s->events[s->event_length++] = bytes[i];
 }
 
-static void event_byte(server *s, uint8_t value)
-{
-    event_bytes(s, &value, 1);
-}
-
-static void event16(server *s, uint16_t value)
-{
-    uint8_t bytes[2];
-    put16(bytes, value);
-    event_bytes(s, bytes, 2);
-}
-
 static void answer16(server *s, uint16_t value)
 {
     put16(s->answer + s->answer_length, value);
     s->answer_length = (uint16_t)(s->answer_length + 2u);
-}
-
-/* --- what the machine reports -------------------------------------------------------- */
-
-static void on_emit(void *context, uint16_t event, const int16_t *payload, uint16_t count)
-{
-    server *s = context;
-    uint16_t i;
-    event_byte(s, REMOTE_EVENT_EMIT);
-    event16(s, event);
-    event16(s, count);
-    for (i = 0; i < count; i++)
-        event16(s, (uint16_t)payload[i]);
-}
-
-static void on_state(void *context, uint16_t pc, uint16_t flags)
-{
-    event_byte(context, REMOTE_EVENT_STATE);
-    event16(context, pc);
-    event16(context, flags);
-}
-
-static void on_killed(void *context, uint16_t pc)
-{
-    event_byte(context, REMOTE_EVENT_KILLED);
-    event16(context, pc);
-}
-
-static void on_array_access(void *context, uint16_t pc, uint16_t size, uint16_t index)
-{
-    event_byte(context, REMOTE_EVENT_ARRAY);
-    event16(context, pc);
-    event16(context, size);
-    event16(context, index);
-}
-
-static void on_division_by_zero(void *context, uint16_t pc)
-{
-    event_byte(context, REMOTE_EVENT_DIVISION);
-    event16(context, pc);
-}
-
-static void on_node_error(void *context, uint16_t pc, const char *text)
-{
-    uint8_t length = 0;
-    while (text[length] != '\0' && length < VM_NODE_ERROR_LENGTH)
-        length++;
-    event_byte(context, REMOTE_EVENT_NODE_ERROR);
-    event16(context, pc);
-    event_byte(context, length);
-    event_bytes(context, text, length);
-}
-
-/* The VM's word reports, each as its remote event. */
-static void on_report(void *context, uint16_t type, const uint16_t *words, uint16_t count)
-{
-    (void)count; /* the VM sends each type's own count (vm.h) */
-    switch (type) {
-    case VM_REPORT_EXECUTION_STATE_CHANGED: on_state(context, words[0], words[1]); break;
-    case VM_REPORT_EVENT_EXECUTION_KILLED: on_killed(context, words[0]); break;
-    case VM_REPORT_ARRAY_ACCESS_OUT_OF_BOUNDS:
-        on_array_access(context, words[0], words[1], words[2]);
-        break;
-    case VM_REPORT_DIVISION_BY_ZERO: on_division_by_zero(context, words[0]); break;
-    default: break;
-    }
-}
-
-static const vm_callbacks callbacks = { on_emit, on_report, on_node_error };
-
-static void on_send(void *context, const uint8_t *bytes, uint16_t count, bool frame_complete)
-{
-    event_byte(context, REMOTE_EVENT_SEND);
-    event16(context, count);
-    event_byte(context, frame_complete ? 1 : 0);
-    event_bytes(context, bytes, count);
-}
-
-static void on_hook(server *s, uint8_t which)
-{
-    event_byte(s, REMOTE_EVENT_HOOK);
-    event_byte(s, which);
-}
-
-static void on_write_bytecode(void *context, const uint16_t *bytecode, uint16_t size)
-{
-    (void)bytecode;
-    (void)size;
-    on_hook(context, REMOTE_HOOK_WRITE_BYTECODE);
-}
-
-static void on_reboot(void *context)
-{
-    on_hook(context, REMOTE_HOOK_REBOOT);
-}
-
-static void on_suspend(void *context)
-{
-    on_hook(context, REMOTE_HOOK_SUSPEND);
 }
 
 /* --- the machine ---------------------------------------------------------------------- */
@@ -360,14 +253,16 @@ static bool open_vm(server *s, const uint8_t *payload, uint16_t length)
         !read_opening_memory(s, payload, length, &memory))
         return false;
     s->is_node = false;
-    vm_init(&s->vm, &memory, get16(payload), &harness_natives, &callbacks, s);
+    vm_init(&s->vm, &memory, get16(payload), &harness_natives, &remote_vm_callbacks, s);
     return true;
 }
 
 static bool open_node(server *s, const uint8_t *payload, uint16_t length)
 {
-    static const node_transport transport = { on_send, &the_server };
-    static const node_hooks hooks = { on_write_bytecode, on_reboot, on_suspend, &the_server };
+    static const node_transport transport = { remote_on_send, &the_server };
+    static const node_hooks hooks = {
+        remote_on_write_bytecode, remote_on_reboot, remote_on_suspend, &the_server
+    };
     const node_description *description;
     vm_memory memory;
 
