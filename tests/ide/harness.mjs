@@ -186,6 +186,31 @@ export async function launchBrowser() {
     });
 }
 
+// What most test files start before their tests: `robots` simulated
+// e-pucks (in the default arena with `arena`, its feed given to the IDE), an
+// IDE on them and a browser.
+// What did start is stopped when a part fails.
+export async function startSession({ robots = 3, arena = false } = {}) {
+    const session = {};
+    try {
+        session.emulator = await startEmulator({ robots, arena: arena ? "default" : null });
+        const feed = arena ? session.emulator.feedPort : null;
+        session.ide = await startIde({ targets: [`tcp:localhost;${session.emulator.port}`], arenaFeed: feed });
+        session.browser = await launchBrowser();
+        return session;
+    } catch (error) {
+        await stopSession(session);
+        throw error;
+    }
+}
+
+// Stops what startSession started, whichever parts of it did start.
+export async function stopSession({ emulator, ide, browser } = {}) {
+    await browser?.close();
+    await ide?.stop();
+    await emulator?.stop();
+}
+
 export function temporaryFolder(prefix = "aseba-ide-test-") {
     const path = mkdtempSync(join(tmpdir(), prefix));
     return { path, remove: () => rmSync(path, { recursive: true, force: true }) };

@@ -8,7 +8,7 @@ import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { writeFileSync } from "node:fs";
 import { join } from "node:path";
-import { startEmulator, startIde, launchBrowser, openIde, setEditorText, editorText, selectRobot, waitFor, sleep, aseba, temporaryFolder } from "./harness.mjs";
+import { startSession, stopSession, openIde, setEditorText, editorText, selectRobot, waitFor, sleep, aseba, temporaryFolder } from "./harness.mjs";
 
 const TIMEOUT = { timeout: 30000 };
 
@@ -32,15 +32,11 @@ before(async () => {
     programFile = join(folder.path, "program.aesl");
     const xml = PROGRAM.replaceAll("<", "&lt;");
     writeFileSync(programFile, `<!DOCTYPE aesl-source>\n<network>\n<node nodeId="1" name="e-puck">${xml}</node>\n</network>\n`);
-    emulator = await startEmulator({ robots: 2 });
-    ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`] });
-    browser = await launchBrowser();
+    ({ emulator, ide, browser } = await startSession({ robots: 2 }));
 });
 
 after(async () => {
-    await browser?.close();
-    await ide?.stop();
-    await emulator?.stop();
+    await stopSession({ emulator, ide, browser });
     folder?.remove();
 });
 

@@ -8,7 +8,7 @@
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { join } from "node:path";
-import { startEmulator, startIde, launchBrowser, openIde, waitFor, sleep } from "./harness.mjs";
+import { startSession, stopSession, openIde, waitFor, sleep } from "./harness.mjs";
 
 const ROBOTS = 100;
 const SIZES = [
@@ -21,15 +21,11 @@ let ide;
 let browser;
 
 before(async () => {
-    emulator = await startEmulator({ robots: ROBOTS, arena: "default" });
-    ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`], arenaFeed: emulator.feedPort });
-    browser = await launchBrowser();
+    ({ emulator, ide, browser } = await startSession({ robots: ROBOTS, arena: true }));
 });
 
 after(async () => {
-    await browser?.close();
-    await ide?.stop();
-    await emulator?.stop();
+    await stopSession({ emulator, ide, browser });
 });
 
 async function shot(page, name) {

@@ -6,7 +6,7 @@ import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { readFileSync, writeFileSync } from "node:fs";
 import { join } from "node:path";
-import { startEmulator, startIde, launchBrowser, openIde, setEditorText, waitFor, aseba, temporaryFolder } from "./harness.mjs";
+import { startSession, stopSession, openIde, setEditorText, waitFor, aseba, temporaryFolder } from "./harness.mjs";
 
 const TIMEOUT = { timeout: 40000 };
 const PROGRAM = "var gains[3]\nvar offset = 0\n";
@@ -21,15 +21,11 @@ before(async () => {
     folder = temporaryFolder();
     programFile = join(folder.path, "program.aesl");
     writeFileSync(programFile, `<!DOCTYPE aesl-source>\n<network>\n<node nodeId="1" name="e-puck">${PROGRAM}</node>\n</network>\n`);
-    emulator = await startEmulator({ robots: 1 });
-    ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`] });
-    browser = await launchBrowser();
+    ({ emulator, ide, browser } = await startSession({ robots: 1 }));
 });
 
 after(async () => {
-    await browser?.close();
-    await ide?.stop();
-    await emulator?.stop();
+    await stopSession({ emulator, ide, browser });
     folder?.remove();
 });
 

@@ -7,7 +7,7 @@ import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
 import { writeFileSync } from "node:fs";
 import { join } from "node:path";
-import { startEmulator, startIde, launchBrowser, openIde, setEditorText, editorText, selectRobot, waitFor, temporaryFolder } from "./harness.mjs";
+import { startSession, stopSession, openIde, setEditorText, editorText, selectRobot, waitFor, temporaryFolder } from "./harness.mjs";
 
 const TIMEOUT = { timeout: 40000 };
 const PROGRAM = "var fromFile = 1\n\nonevent ping\n    fromFile = args[0]\n";
@@ -22,15 +22,11 @@ before(async () => {
     folder = temporaryFolder();
     projectFile = join(folder.path, "small.aesl");
     writeFileSync(projectFile, `<!DOCTYPE aesl-source>\n<network>\n<event size="1" name="ping"/>\n<constant value="3" name="THREE"/>\n<node nodeId="1" name="e-puck">${PROGRAM}</node>\n</network>\n`);
-    emulator = await startEmulator({ robots: 2 });
-    ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`] });
-    browser = await launchBrowser();
+    ({ emulator, ide, browser } = await startSession({ robots: 2 }));
 });
 
 after(async () => {
-    await browser?.close();
-    await ide?.stop();
-    await emulator?.stop();
+    await stopSession({ emulator, ide, browser });
     folder?.remove();
 });
 

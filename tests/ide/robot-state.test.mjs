@@ -6,7 +6,7 @@
 
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
-import { startEmulator, startIde, launchBrowser, openIde, setEditorText, selectRobot, waitFor, aseba } from "./harness.mjs";
+import { startSession, stopSession, openIde, setEditorText, selectRobot, waitFor, aseba } from "./harness.mjs";
 
 const TIMEOUT = { timeout: 30000 };
 
@@ -27,15 +27,11 @@ let browser;
 let page;
 
 before(async () => {
-    emulator = await startEmulator({ robots: 2 });
-    ide = await startIde({ targets: [`tcp:localhost;${emulator.port}`] });
-    browser = await launchBrowser();
+    ({ emulator, ide, browser } = await startSession({ robots: 2 }));
 });
 
 after(async () => {
-    await browser?.close();
-    await ide?.stop();
-    await emulator?.stop();
+    await stopSession({ emulator, ide, browser });
 });
 
 // What the robot says of itself: "running", "stepping" or "stopped"
