@@ -69,14 +69,15 @@ $(foreach v,$(VARIANTS),$(eval \
   $(BUILD)/$(v)/bin/bench-mqtt: | $(BUILD)/$(v)/bin/epuck-emu $(BUILD)/$(v)/bin/aseba-mqtt))
 
 # The dsPIC30F simulator's speed (tools/dspic30_sim): bench/dspic30_workload.c
-# built for the dsPIC30F6014A with the pic30-elf toolchain and the bare
-# programs' start-up of tests/dspic30_sim (tests/dspic30_sim/module.mk).
+# built for the dsPIC30F6014A with the pic30-elf toolchain on the port's
+# start-up, as the bare programs of tests/dspic30_sim are
+# (tests/dspic30_sim/module.mk).
 DSPIC30_BENCH_OUT := $(BUILD)/dspic30_sim/bench
 DSPIC30_WORKLOAD := $(DSPIC30_BENCH_OUT)/dspic30_workload.hex
-DSPIC30_BENCH_SUPPORT := $(BUILD)/dspic30_sim/torture/support/torture_crt0.o \
-                         $(BUILD)/dspic30_sim/torture/support/torture_helpers.o
+DSPIC30_BENCH_SUPPORT := $(addprefix $(BUILD)/dspic30_sim/torture/support/,dspic30_reset.o \
+                           dspic30_startup.o dspic30_runtime.o)
 $(DSPIC30_WORKLOAD): bench/dspic30_workload.c $(DSPIC30_BENCH_SUPPORT) \
-                     tests/dspic30_sim/runtime/torture_p30f6014a.gld
+                     tests/dspic30_sim/runtime/bare_chip.gld tests/dspic30_sim/runtime/torture_p30f6014a.gld
 	@mkdir -p $(@D)
 	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) -std=gnu99 -ffreestanding $(PIC30_GCC_INCLUDES) -c $< \
 	    -o $(@:.hex=.o)

@@ -27,32 +27,37 @@ $(BUILD)/host/tests/dspic30_sim_semantics_test: | $(PIC30_TOOLCHAIN)
 # --- the GCC torture corpus ----------------------------------------------------
 # ../shared/vectors/gcc-torture: 818 C tests of GCC's execution suite, each
 # built here into a HEX image at build time (make builds only what changed),
-# with the test-only start-up, linker script and 32-bit helpers of
-# tests/dspic30_sim/runtime. The toolchain's compiler does not search its own
-# lib/gcc include folders (stddef.h, limits.h, ...): they are named here.
+# on the port's own start-up and 32-bit helpers (ports/dspic30: what the
+# e-puck's images run) and a whole-chip layout (tests/dspic30_sim/runtime).
+# The toolchain's compiler does not search its own lib/gcc include folders
+# (stddef.h, limits.h, ...): they are named here.
 TORTURE_SOURCE := ../shared/vectors/gcc-torture
 TORTURE_OUT := $(BUILD)/dspic30_sim/torture
 TORTURE_RUNTIME := tests/dspic30_sim/runtime
-TORTURE_SCRIPT := $(TORTURE_RUNTIME)/torture_p30f6014a.gld
+TORTURE_SCRIPT := $(TORTURE_RUNTIME)/bare_chip.gld
 TORTURE_NAMES := $(sort $(notdir $(basename $(wildcard $(TORTURE_SOURCE)/tests/*.c))))
 TORTURE_IMAGES := $(patsubst %,$(TORTURE_OUT)/%.hex,$(TORTURE_NAMES))
 PIC30_GCC_INCLUDES = -isystem $(PIC30_BIN)/../lib/gcc/pic30-elf/4.5.1/include \
                      -isystem $(PIC30_BIN)/../lib/gcc/pic30-elf/4.5.1/include-fixed
 PIC30_CFLAGS := -mcpu=30F6014A -Os
-TORTURE_SUPPORT := $(TORTURE_OUT)/support/torture_crt0.o $(TORTURE_OUT)/support/uart_exit.o \
-                   $(TORTURE_OUT)/support/libc.o $(TORTURE_OUT)/support/torture_helpers.o
+# The port's start-up, the first object of every link, and its helpers.
+BARE_STARTUP := $(TORTURE_OUT)/support/dspic30_reset.o $(TORTURE_OUT)/support/dspic30_startup.o \
+                $(TORTURE_OUT)/support/dspic30_runtime.o
+TORTURE_SUPPORT := $(BARE_STARTUP) $(TORTURE_OUT)/support/uart_exit.o $(TORTURE_OUT)/support/libc.o
 # Links a bare program: $(1) = output .elf, $(2) = objects (the start-up first).
 define PIC30_LINK
 $(PIC30_BIN)/pic30-elf-gcc -nostartfiles -nostdlib -T $(TORTURE_SCRIPT) $(2) \
     -Wl,--no-pack-data,--no-isr,--no-ivt -o $(1)
 endef
 
-$(TORTURE_OUT)/support/torture_crt0.o: $(TORTURE_RUNTIME)/torture_crt0.s | $(PIC30_TOOLCHAIN)
+$(TORTURE_OUT)/support/dspic30_reset.o: ports/dspic30/dspic30_reset.s | $(PIC30_TOOLCHAIN)
 	@mkdir -p $(@D)
 	$(PIC30_BIN)/pic30-elf-gcc -mcpu=30F6014A -c $< -o $@
-$(TORTURE_OUT)/support/torture_helpers.o: $(TORTURE_RUNTIME)/torture_helpers.c | $(PIC30_TOOLCHAIN)
+$(TORTURE_OUT)/support/dspic30_%.o: ports/dspic30/dspic30_%.c ports/dspic30/dspic30_registers.h \
+                                    ports/dspic30/dspic30_startup.h | $(PIC30_TOOLCHAIN)
 	@mkdir -p $(@D)
-	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) $(PIC30_GCC_INCLUDES) -c $< -o $@
+	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) -std=gnu99 -ffreestanding -Wall -Wextra -Werror \
+	    $(PIC30_GCC_INCLUDES) -c $< -o $@
 $(TORTURE_OUT)/support/%.o: $(TORTURE_SOURCE)/support/%.c | $(PIC30_TOOLCHAIN)
 	@mkdir -p $(@D)
 	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) $(PIC30_GCC_INCLUDES) -c $< -o $@
@@ -60,7 +65,7 @@ $(TORTURE_OUT)/%.o: $(TORTURE_SOURCE)/tests/%.c | $(PIC30_TOOLCHAIN)
 	@mkdir -p $(@D)
 	@$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) -w $(PIC30_GCC_INCLUDES) \
 	    -I$(TORTURE_SOURCE)/support/include -Dmain=torture_main -c $< -o $@
-$(TORTURE_OUT)/%.hex: $(TORTURE_OUT)/%.o $(TORTURE_SUPPORT) $(TORTURE_SCRIPT)
+$(TORTURE_OUT)/%.hex: $(TORTURE_OUT)/%.o $(TORTURE_SUPPORT) $(TORTURE_SCRIPT) $(TORTURE_RUNTIME)/torture_p30f6014a.gld
 	@$(call PIC30_LINK,$(@:.hex=.elf),$(TORTURE_SUPPORT) $<)
 	@$(PIC30_BIN)/pic30-elf-bin2hex $(@:.hex=.elf)
 .PRECIOUS: $(TORTURE_OUT)/%.o
@@ -94,9 +99,8 @@ $(DIFFERENTIAL_OUT)/%.o: $(DIFFERENTIAL_SOURCE)/%.c $(DIFFERENTIAL_SOURCE)/harne
 	    $(PIC30_GCC_INCLUDES) -c $< -o $@
 $(DIFFERENTIAL_OUT)/%.hex: $(DIFFERENTIAL_OUT)/%.o $(DIFFERENTIAL_OUT)/harness_dspic30.o $(TORTURE_SUPPORT) \
                            $(TORTURE_SCRIPT)
-	$(call PIC30_LINK,$(@:.hex=.elf),$(TORTURE_OUT)/support/torture_crt0.o $< \
-	    $(DIFFERENTIAL_OUT)/harness_dspic30.o $(TORTURE_OUT)/support/libc.o \
-	    $(TORTURE_OUT)/support/torture_helpers.o)
+	$(call PIC30_LINK,$(@:.hex=.elf),$(BARE_STARTUP) $< \
+	    $(DIFFERENTIAL_OUT)/harness_dspic30.o $(TORTURE_OUT)/support/libc.o)
 	$(PIC30_BIN)/pic30-elf-bin2hex $(@:.hex=.elf)
 .PRECIOUS: $(DIFFERENTIAL_OUT)/%.o
 

@@ -65,6 +65,7 @@ DSPIC30_HARNESS_OBJECTS := $(patsubst %,$(DSPIC30_OUT)/obj/%.o,$(basename $(DSPI
 DSPIC30_HARNESS_SCRIPT := tests/ports/dspic30/target/harness.gld
 
 $(DSPIC30_HARNESS).elf: $(DSPIC30_HARNESS_OBJECTS) $(DSPIC30_HARNESS_SCRIPT) $(DSPIC30_SCRIPTS_INCLUDED) \
+                        tests/dspic30_sim/runtime/bare_chip.gld \
                         tests/dspic30_sim/runtime/torture_p30f6014a.gld | dspic30-toolchain
 	$(DSPIC_GCC) $(call DSPIC30_LDFLAGS,$(DSPIC30_HARNESS_SCRIPT),$@) \
 	    $(DSPIC30_HARNESS_OBJECTS) -o $@ > $(@:.elf=.memory)
