@@ -20,10 +20,24 @@ REFERENCE = re.compile(r"(?<![\w/.-])((?:\.\./)*[\w./-]*\w\.md)\b")
 
 
 def scanned_files():
+    """The documents and the tools' sources: as git lists them in a clone,
+    else (a copy without .git, a release's tarball) as they are on disk."""
     listed = subprocess.run(["git", "ls-files", "*.md", "tools/*.cpp", "tools/*.hpp"],
-                            check=True, capture_output=True, text=True).stdout.split()
-    return [path for path in listed
-            if not path.startswith("tests/") and "node_modules" not in path]
+                            capture_output=True, text=True)
+    if listed.returncode == 0:
+        paths = listed.stdout.split()
+    else:
+        paths = []
+        for folder, subfolders, names in os.walk("."):
+            subfolders[:] = [name for name in subfolders
+                             if not name.startswith(".") and name not in ("build", "node_modules")]
+            for name in names:
+                path = os.path.relpath(os.path.join(folder, name))
+                if name.endswith(".md") or (path.startswith("tools/") and
+                                            name.endswith((".cpp", ".hpp"))):
+                    paths.append(path)
+    return sorted(path for path in paths
+                  if not path.startswith("tests/") and "node_modules" not in path)
 
 
 def text_of(path):
