@@ -64,13 +64,15 @@ if [ ! -f "$base" ]; then
 fi
 tar -C "$root" -xf "$base"
 
-# The checkout as git knows it, and ../shared read-only as CI has it.
-mkdir -p "$root/work/epuck-aseba"
+# The checkout as git knows it, in the user's home, and ../shared beside
+# it, read-only as CI has it.
+place=/root/src
+mkdir -p "$root$place/epuck-aseba"
 git -C "$checkout" ls-files -z --cached --others --exclude-standard |
-    (cd "$checkout" && tar --null -T - -cf -) | tar -C "$root/work/epuck-aseba" -xf -
+    (cd "$checkout" && tar --null -T - -cf -) | tar -C "$root$place/epuck-aseba" -xf -
 if [ -n "$shared" ]; then
-    cp -a "$shared" "$root/work/shared"
-    chmod -R a-w "$root/work/shared"
+    cp -a "$shared" "$root$place/shared"
+    chmod -R a-w "$root$place/shared"
 fi
 
 # The machine's network, as a user's machine has its own: its resolver, its
@@ -100,7 +102,7 @@ echo "fresh-machine: running in a fresh Debian 12: $*"
 chroot "$root" /usr/bin/env -i HOME=/root PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
     LANG=C.UTF-8 CI="${CI:-}" DEBIAN_FRONTEND=noninteractive "${network_settings[@]}" \
     bash -c 'set -euo pipefail
-             cd /work/epuck-aseba
+             cd '"$place"'/epuck-aseba
              apt-get update -q >/dev/null
              apt-get install -y -q --no-install-recommends git make >/dev/null
              '"$*"
