@@ -8,6 +8,9 @@ set -euo pipefail
 build=$1
 bin=$build/host/bin
 report=docs/benchmarks.md
+# The machine's load when the run starts and ends: timed figures mean
+# little on a machine busy with other work, and the reader must know.
+load_at_start=$(cut -d' ' -f1 /proc/loadavg)
 
 # Repetitions, kept small enough for the whole run to take a few minutes.
 vm_timing_runs=30
@@ -370,7 +373,10 @@ cores=$(nproc)
     echo "Measured by \`make bench\` (scripts/bench.sh, programs in bench/) on"
     echo "$cpu_model, $cores cores, $(date -u '+%Y-%m-%d %H:%M UTC'). This file is"
     echo "replaced on every run but for its last part, written by hand. The reference"
-    echo "is Debian's \`aseba\` 1.6.99, measured in the same run."
+    echo "is Debian's \`aseba\` 1.6.99, measured in the same run. Load average (1 min)"
+    echo "$load_at_start at the start, $(cut -d' ' -f1 /proc/loadavg) at the end: the timed figures are"
+    echo "only comparable between runs of a similar load; sizes, instruction and cycle"
+    echo "counts do not depend on it."
     echo
     echo "$table"
     echo
