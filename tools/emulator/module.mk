@@ -24,3 +24,9 @@ epuck-emu_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flas
                   aseba_epuck aseba_store aseba_bootloader aseba_host_board aseba_compiler aseba_node \
                   aseba_vm aseba_natives
 epuck-emu_LDLIBS := -lenki -pthread
+
+# An e-puck of the arena on the simulated dsPIC30F6014A (tools/dspic30_sim):
+# the board around the chip fed by the robot's world, and the camera's
+# pixel port on the chip's clock.
+LIBRARIES += aseba_dspic30_robot
+aseba_dspic30_robot_SOURCES := tools/emulator/dspic30_robot.cpp tools/emulator/dspic30_pixel_port.cpp
