@@ -253,6 +253,27 @@ TEST(Dspic30ArenaRobot, CameraSeesWhatTheHostRobotSees)
     EXPECT_GT(lit, 30);
 }
 
+TEST(Dspic30ArenaRobot, LedsVariableLightsTheRingAsOnTheHostRobot)
+{
+    const std::vector<int16_t> pattern = { 1, 0, 0, 32, 0, 7, 1, 0 };
+    ArenaSimulation host(one_robot_arena(), seed, {});
+    host.run_for(1.5);
+    std::copy(pattern.begin(), pattern.end(), host.firmware(0).variables.named.leds);
+    host.run_for(0.1);
+
+    ChipInArena chip(one_robot_arena());
+    chip.run_for(1.5);
+    uint16_t node = chip.node_id();
+    chip.send(client::SetVariables{ node, VARIABLE_INDEX(leds), pattern });
+    chip.run_for(0.1);
+    for (size_t led = 0; led < pattern.size(); led++) {
+        epuck_pin pin = epuck_pin(EPUCK_PIN_LED_0 + led);
+        // A non-zero value lights the LED (the variable's meaning).
+        EXPECT_EQ(host.board(0).outputs[pin], pattern[led] != 0) << "host LED " << led;
+        EXPECT_EQ(chip.robot().output(pin), pattern[led] != 0) << "chip LED " << led;
+    }
+}
+
 TEST(Dspic30ArenaRobot, PaperAnnexDrivesAsOnTheHostRobot)
 {
     const std::vector<uint16_t> annex = arena_test::compile("examples/paper-annex.aesl");
