@@ -12,6 +12,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
+#include <fstream>
+#include <string>
 #include <optional>
 #include <vector>
 
@@ -306,6 +309,49 @@ TEST(Dspic30ArenaRobot, PaperAnnexDrivesAsOnTheHostRobot)
     std::vector<int16_t> speeds = chip.variables(node, VARIABLE_INDEX(left_speed), 2);
     EXPECT_GT(speeds[0], 0);
     EXPECT_GT(speeds[1], 0);
+}
+
+// The deepest the application's stack goes while the paper's controller
+// runs, its description is sent and its variables are read (every
+// interrupt of the board going on meanwhile): W15 stays below SPLIM, the
+// limit the start-up code sets from the linker's stack region (a stack
+// error trap otherwise), and within that region. The depth is printed for
+// docs/benchmarks.md (the RAM budget).
+TEST(Dspic30ArenaRobot, StackStaysWithinTheLinkersReserve)
+{
+    const std::vector<uint16_t> annex = arena_test::compile("examples/paper-annex.aesl");
+    std::ifstream map(DSPIC30_APPLICATION_MAP);
+    ASSERT_TRUE(map) << DSPIC30_APPLICATION_MAP;
+    unsigned stack_base = 0, stack_bytes = 0;
+    for (std::string line; std::getline(map, line);)
+        if (std::sscanf(line.c_str(), "stack %x %x", &stack_base, &stack_bytes) == 2)
+            break;
+    ASSERT_GT(stack_bytes, 0u) << "no stack region in the map";
+
+    Arena arena = one_robot_arena();
+    ChipInArena chip(arena);
+    chip.run_for(1.5); // the bootloader's second, the application starting
+    uint16_t node = chip.node_id();
+    aseba::dspic30::Cpu &cpu = chip.robot().chip().cpu();
+    const uint16_t limit = cpu.read_data(0x0020); // SPLIM
+    uint16_t deepest = 0;
+    cpu.set_trace([&](const aseba::dspic30::Cpu &c) { deepest = std::max(deepest, c.w(15)); });
+    chip.load_and_run(node, annex);
+    chip.send(client::GetDescription{});
+    chip.run_for(1.0);
+    chip.variables(node, 0, 100);
+    chip.run_for(1.0);
+    cpu.set_trace({});
+
+    EXPECT_GE(limit, stack_base);
+    EXPECT_LE(limit, stack_base + stack_bytes);
+    EXPECT_GT(deepest, stack_base);
+    EXPECT_LT(deepest, limit) << "the stack reached SPLIM";
+    std::printf("stack: deepest W15 0x%04X, %u of the %u bytes the linker reserves from 0x%04X\n",
+                deepest,
+                unsigned(deepest - stack_base),
+                stack_bytes,
+                stack_base);
 }
 
 } // namespace

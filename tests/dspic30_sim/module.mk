@@ -175,6 +175,7 @@ dspic30_arena_robot_test_LIBS := aseba_dspic30_robot dspic30_sim aseba_client as
                                  aseba_compiler aseba_node aseba_vm aseba_natives
 dspic30_arena_robot_test_LDLIBS := -lenki $(DSPIC30_SIM_TEST_LDLIBS)
 EXTRA_CFLAGS_tests/dspic30_sim/arena_robot_test := \
-    '-DDSPIC30_FACTORY_HEX="$(DSPIC30_OUT)/epuck-aseba-factory.hex"'
+    '-DDSPIC30_FACTORY_HEX="$(DSPIC30_OUT)/epuck-aseba-factory.hex"' \
+    '-DDSPIC30_APPLICATION_MAP="$(DSPIC30_OUT)/epuck-aseba-application.map"'
 $(BUILD)/host-sanitize/tests/dspic30_arena_robot_test \
 $(BUILD)/host/tests/dspic30_arena_robot_test: | $(DSPIC30_OUT)/epuck-aseba-factory.hex
