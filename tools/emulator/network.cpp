@@ -56,7 +56,7 @@ bool FrameReader::feed(const uint8_t *bytes, size_t count)
     return !broken_;
 }
 
-std::optional<Frame> FrameReader::next()
+std::optional<FrameView> FrameReader::next()
 {
     size_t available = pending_.size() - consumed_;
     if (broken_ || available < NODE_HEADER_SIZE)
@@ -65,12 +65,11 @@ std::optional<Frame> FrameReader::next()
     size_t length = NODE_HEADER_SIZE + read_u16(start);
     if (available < length)
         return std::nullopt;
-    Frame frame(start, start + length);
     consumed_ += length;
     if (pending_.size() - consumed_ >= 2 &&
         read_u16(pending_.data() + consumed_) > NODE_MAX_PAYLOAD)
         broken_ = true;
-    return frame;
+    return FrameView{ start, length };
 }
 
 namespace
@@ -90,7 +89,7 @@ struct Board;
 
 // Where a board's frames go.
 struct Bus {
-    virtual void broadcast_from_board(Board &from, const Frame &frame) = 0;
+    virtual void broadcast_from_board(Board &from, FrameView frame) = 0;
 
   protected:
     ~Bus() = default;
@@ -131,11 +130,10 @@ struct Client {
     connections::Clock::time_point heard; // when it last sent something
     FrameReader reader;
     std::array<uint8_t, read_chunk> input{};
-    bool reading = false;
+    bool reading = false;   // a wait for bytes, or a read, is pending
     size_t full_queues = 0; // boards where this client has its share waiting
-    std::string unsent;     // for the client, after what is being sent
-    std::string sending;
-    bool writing = false;
+    std::string unsent;     // for the client, not yet taken by its socket
+    bool writing = false;   // waiting for the socket to take more
     bool closed = false;
 };
 
@@ -153,7 +151,8 @@ struct Listener {
 } // namespace
 
 struct Network::State final : Bus {
-    asio::io_context io;
+    // One thread runs it: no locks (asio's concurrency hint).
+    asio::io_context io{ 1 };
     // service() waits for its time even when no socket is open.
     asio::executor_work_guard<asio::io_context::executor_type> work = asio::make_work_guard(io);
     std::vector<std::unique_ptr<Listener>> listeners;
@@ -164,6 +163,7 @@ struct Network::State final : Bus {
     uint64_t frames_dropped = 0;
     bool relay_robot_events = true;
     std::function<void(const Frame &)> observer;
+    Frame observed; // a robot's frame for the observer, when no board takes a copy
 
     ~State()
     {
@@ -244,6 +244,8 @@ struct Network::State final : Bus {
         std::error_code ignored;
         // Hosts wait for each answer: do not let Nagle hold small frames.
         socket.set_option(asio::ip::tcp::no_delay(true), ignored);
+        // read_from reads what has come without waiting.
+        socket.non_blocking(true, ignored);
         auto client = std::make_shared<Client>(io);
         client->socket = std::move(socket);
         client->number = next_client_number++;
@@ -254,50 +256,104 @@ struct Network::State final : Bus {
         start_read(client);
     }
 
+    // Reads the client again (a new one, or one whose queues had filled):
+    // bytes may have come meanwhile, so read before waiting.
     void start_read(const std::shared_ptr<Client> &client)
     {
         if (client->closed || client->reading || client->full_queues > 0)
             return;
         client->reading = true;
-        client->socket.async_read_some(
-          asio::buffer(client->input), [this, client](std::error_code error, size_t count) {
-              client->reading = false;
-              if (client->closed)
-                  return;
-              if (error) {
-                  close(*client, nullptr); // closed by the peer, or failed
-                  return;
-              }
-              client->heard = connections::Clock::now();
-              if (!client->reader.feed(client->input.data(), count)) {
-                  close(*client, "it sent a frame longer than the protocol allows");
-                  return;
-              }
-              while (auto frame = client->reader.next())
-                  broadcast_from_client(*client, *frame);
-              start_read(client);
-          });
+        asio::post(io, [this, client] {
+            client->reading = false;
+            read_from(client);
+        });
     }
 
-    void start_write(const std::shared_ptr<Client> &client)
+    // Waits until the client's socket has bytes, then reads them. The wait
+    // sees every arrival after it starts, so it starts only once a read
+    // found the socket empty: no read is tried in vain before each wait.
+    void wait_for_bytes(const std::shared_ptr<Client> &client)
+    {
+        client->reading = true;
+        client->socket.async_wait(asio::ip::tcp::socket::wait_read,
+                                  [this, client](std::error_code error) {
+                                      client->reading = false;
+                                      if (client->closed)
+                                          return;
+                                      if (error) {
+                                          close(*client, nullptr);
+                                          return;
+                                      }
+                                      read_from(client);
+                                  });
+    }
+
+    // One read of what the client sent, passed on frame by frame. A read
+    // that fills the buffer may have left more: the next one is posted, so
+    // that other sockets get their turn in between.
+    void read_from(const std::shared_ptr<Client> &client)
+    {
+        if (client->closed || client->reading || client->full_queues > 0)
+            return;
+        std::error_code error;
+        size_t count = client->socket.read_some(asio::buffer(client->input), error);
+        if (error == asio::error::would_block || error == asio::error::try_again) {
+            wait_for_bytes(client);
+            return;
+        }
+        if (error) {
+            close(*client, nullptr); // closed by the peer, or failed
+            return;
+        }
+        client->heard = connections::Clock::now();
+        if (!client->reader.feed(client->input.data(), count)) {
+            close(*client, "it sent a frame longer than the protocol allows");
+            return;
+        }
+        while (auto frame = client->reader.next())
+            broadcast_from_client(*client, *frame);
+        if (client->closed || client->full_queues > 0)
+            return; // deliver_to_boards reads it again once there is room
+        if (count == client->input.size())
+            start_read(client);
+        else
+            wait_for_bytes(client);
+    }
+
+    // Sends what waits for the client, as much as its socket takes now, in
+    // one system call for every frame gathered since the last time; the
+    // rest once the socket can take more.
+    void flush(const std::shared_ptr<Client> &client)
     {
         if (client->closed || client->writing || client->unsent.empty())
             return;
+        std::error_code error;
+        size_t sent = client->socket.write_some(asio::buffer(client->unsent), error);
+        if (error && error != asio::error::would_block && error != asio::error::try_again) {
+            close(*client, nullptr);
+            return;
+        }
+        client->unsent.erase(0, sent);
+        if (client->unsent.empty())
+            return;
         client->writing = true;
-        client->sending.swap(client->unsent);
-        asio::async_write(client->socket,
-                          asio::buffer(client->sending),
-                          [this, client](std::error_code error, size_t) {
-                              client->writing = false;
-                              client->sending.clear();
-                              if (client->closed)
-                                  return;
-                              if (error) {
-                                  close(*client, nullptr);
-                                  return;
-                              }
-                              start_write(client);
-                          });
+        client->socket.async_wait(asio::ip::tcp::socket::wait_write,
+                                  [this, client](std::error_code wait_error) {
+                                      client->writing = false;
+                                      if (client->closed)
+                                          return;
+                                      if (wait_error) {
+                                          close(*client, nullptr);
+                                          return;
+                                      }
+                                      flush(client);
+                                  });
+    }
+
+    void flush_clients()
+    {
+        for (auto &client : clients)
+            flush(client);
     }
 
     // Closes the client's socket; it leaves `clients` at the next sweep.
@@ -359,39 +415,40 @@ struct Network::State final : Bus {
             observer(frame);
     }
 
-    void send_to_clients(const Board *from_board, const Client *from_client, const Frame &frame)
+    void send_to_clients(const Board *from_board, const Client *from_client, FrameView frame)
     {
         // Direct clients hear their own robot only.
         for (auto &client : clients) {
             if (client->closed || client.get() == from_client ||
                 (client->robot != nullptr && client->robot != from_board))
                 continue;
-            client->unsent.append(frame.begin(), frame.end());
-            if (client->unsent.size() + client->sending.size() > CLIENT_UNREAD_LIMIT) {
+            client->unsent.append(reinterpret_cast<const char *>(frame.bytes), frame.size);
+            if (client->unsent.size() > CLIENT_UNREAD_LIMIT)
                 close(*client, "it stopped reading");
-                continue;
-            }
-            start_write(client);
         }
     }
 
-    void broadcast_from_board(Board &from, const Frame &frame) override
+    void broadcast_from_board(Board &from, FrameView frame) override
     {
-        count(frame);
-        const bool user_event = read_u16(frame.data() + type_offset) < NODE_FIRST_SYSTEM_TYPE;
-        if (!user_event || relay_robot_events) {
-            auto shared = std::make_shared<const Frame>(frame);
+        const bool user_event = read_u16(frame.bytes + type_offset) < NODE_FIRST_SYSTEM_TYPE;
+        if ((!user_event || relay_robot_events) && boards.size() > 1) {
+            auto shared = std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
+            count(*shared);
             for (auto &board : boards)
                 if (board.get() != &from)
                     enqueue(*board, robots_source, shared);
+        } else {
+            // No other board keeps it: the observer sees a reused buffer.
+            observed.assign(frame.bytes, frame.bytes + frame.size);
+            count(observed);
         }
         send_to_clients(&from, nullptr, frame);
     }
 
-    void broadcast_from_client(const Client &from, const Frame &frame)
+    void broadcast_from_client(const Client &from, FrameView frame)
     {
-        count(frame);
-        auto shared = std::make_shared<const Frame>(frame);
+        auto shared = std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
+        count(*shared);
         if (from.robot != nullptr) {
             // A client linked directly to one robot talks to it alone.
             enqueue(*from.robot, from.number, shared);
@@ -498,6 +555,8 @@ void Network::attach(hal_board *board)
 void Network::service(int timeout_ms)
 {
     State &state = *state_;
+    // What the boards said since the last call leaves before any wait.
+    state.flush_clients();
     state.deliver_to_boards();
     if (state.io.stopped())
         state.io.restart();
@@ -510,6 +569,7 @@ void Network::service(int timeout_ms)
     // What arrived while waiting reaches the boards before this returns, so
     // that robots answer at their next poll rather than after another wait.
     state.deliver_to_boards();
+    state.flush_clients();
 }
 
 size_t Network::client_count() const
@@ -532,7 +592,7 @@ size_t Network::held_bytes() const
         for (const auto &[source, queue] : board->waiting)
             bytes += queue.bytes;
     for (const auto &client : state_->clients)
-        bytes += client->unsent.size() + client->sending.size();
+        bytes += client->unsent.size();
     return bytes;
 }
 
