@@ -33,6 +33,9 @@ constexpr size_t read_chunk = 1024;
 constexpr int max_events_per_service = 256;
 // The robots' frames, in the queue of each board, as one source.
 constexpr uint64_t robots_source = 0;
+// Frames kept for reuse once delivered, at most: a frame's buffer and its
+// count of owners are then not allocated again for each message.
+constexpr size_t spare_frames_kept = 256;
 
 uint16_t read_u16(const uint8_t *bytes)
 {
@@ -118,7 +121,7 @@ void board_output(void *context, const uint8_t *bytes, uint16_t count)
 
 struct Listener;
 
-struct Client {
+struct Client : std::enable_shared_from_this<Client> {
     explicit Client(asio::io_context &io)
       : socket(io)
     {
@@ -151,8 +154,9 @@ struct Listener {
 } // namespace
 
 struct Network::State final : Bus {
-    // One thread runs it: no locks (asio's concurrency hint).
-    asio::io_context io{ 1 };
+    // One thread runs it and no other touches it: no locks, not even
+    // around each socket (asio's concurrency hint).
+    asio::io_context io{ ASIO_CONCURRENCY_HINT_UNSAFE };
     // service() waits for its time even when no socket is open.
     asio::executor_work_guard<asio::io_context::executor_type> work = asio::make_work_guard(io);
     std::vector<std::unique_ptr<Listener>> listeners;
@@ -164,6 +168,7 @@ struct Network::State final : Bus {
     bool relay_robot_events = true;
     std::function<void(const Frame &)> observer;
     Frame observed; // a robot's frame for the observer, when no board takes a copy
+    std::vector<SharedFrame> spare_frames; // delivered, for make_frame to reuse
 
     ~State()
     {
@@ -381,12 +386,33 @@ struct Network::State final : Bus {
                 accept(*listener);
     }
 
-    std::shared_ptr<Client> client_numbered(uint64_t number) const
+    Client *client_numbered(uint64_t number) const
     {
         for (const auto &client : clients)
             if (client->number == number)
-                return client;
+                return client.get();
         return nullptr;
+    }
+
+    // A frame holding `frame`'s bytes, from the spares when one is left.
+    SharedFrame make_frame(FrameView frame)
+    {
+        if (spare_frames.empty())
+            return std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
+        std::shared_ptr<const Frame> reused = std::move(spare_frames.back());
+        spare_frames.pop_back();
+        // Made as a mutable Frame by make_shared above: writable again now
+        // that nothing else holds it.
+        std::const_pointer_cast<Frame>(reused)->assign(frame.bytes, frame.bytes + frame.size);
+        return reused;
+    }
+
+    // Keeps a delivered frame for reuse if its last owner is `frame`.
+    void recycle(SharedFrame &frame)
+    {
+        if (frame.use_count() == 1 && spare_frames.size() < spare_frames_kept)
+            spare_frames.push_back(std::move(frame));
+        frame.reset();
     }
 
     void enqueue(Board &board, uint64_t source, const SharedFrame &frame)
@@ -432,7 +458,7 @@ struct Network::State final : Bus {
     {
         const bool user_event = read_u16(frame.bytes + type_offset) < NODE_FIRST_SYSTEM_TYPE;
         if ((!user_event || relay_robot_events) && boards.size() > 1) {
-            auto shared = std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
+            SharedFrame shared = make_frame(frame);
             count(*shared);
             for (auto &board : boards)
                 if (board.get() != &from)
@@ -447,7 +473,7 @@ struct Network::State final : Bus {
 
     void broadcast_from_client(const Client &from, FrameView frame)
     {
-        auto shared = std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
+        SharedFrame shared = make_frame(frame);
         count(*shared);
         if (from.robot != nullptr) {
             // A client linked directly to one robot talks to it alone.
@@ -486,19 +512,20 @@ struct Network::State final : Bus {
                 if (!host_board_link_deliver(board->board, frame.data(), uint16_t(frame.size())))
                     break;
                 queue.bytes -= frame.size();
+                recycle(queue.frames.front());
                 queue.frames.pop_front();
                 board->waiting_frames--;
                 board->last_served = source->first;
                 if (source->first == robots_source)
                     continue;
-                std::shared_ptr<Client> client = client_numbered(source->first);
+                Client *client = client_numbered(source->first);
                 bool now_room = queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
                                 queue.bytes < CLIENT_BYTES_PER_ROBOT;
                 if (queue.full && now_room) {
                     queue.full = false;
                     if (client) {
                         client->full_queues--;
-                        start_read(client);
+                        start_read(client->shared_from_this());
                     }
                 }
                 if (!client && queue.frames.empty())
