@@ -31,6 +31,10 @@ constexpr size_t read_chunk = 1024;
 // Socket events handled in one service() call after the first, so that
 // a client that never stops sending cannot keep service() from returning.
 constexpr int max_events_per_service = 256;
+// Passes of service() at most between two looks at the sockets' events
+// while clients that were read again had sent more (accepts and writes
+// waiting for room are handled at those looks).
+constexpr int passes_between_events = 16;
 // The robots' frames, in the queue of each board, as one source.
 constexpr uint64_t robots_source = 0;
 // Frames kept for reuse once delivered, at most: a frame's buffer and its
@@ -133,10 +137,11 @@ struct Client : std::enable_shared_from_this<Client> {
     connections::Clock::time_point heard; // when it last sent something
     FrameReader reader;
     std::array<uint8_t, read_chunk> input{};
-    bool reading = false;   // a wait for bytes, or a read, is pending
-    size_t full_queues = 0; // boards where this client has its share waiting
-    std::string unsent;     // for the client, not yet taken by its socket
-    bool writing = false;   // waiting for the socket to take more
+    bool reading = false;    // a wait for bytes, or a read, is pending
+    bool read_again = false; // sent at the last read: read at the next service()
+    size_t full_queues = 0;  // boards where this client has its share waiting
+    std::string unsent;      // for the client, not yet taken by its socket
+    bool writing = false;    // waiting for the socket to take more
     bool closed = false;
 };
 
@@ -169,6 +174,7 @@ struct Network::State final : Bus {
     std::function<void(const Frame &)> observer;
     Frame observed; // a robot's frame for the observer, when no board takes a copy
     std::vector<SharedFrame> spare_frames; // delivered, for make_frame to reuse
+    int passes_without_events = 0;         // service() calls since the last look
 
     ~State()
     {
@@ -275,8 +281,8 @@ struct Network::State final : Bus {
     }
 
     // Waits until the client's socket has bytes, then reads them. The wait
-    // sees every arrival after it starts, so it starts only once a read
-    // found the socket empty: no read is tried in vain before each wait.
+    // sees every arrival after it starts (and bytes that came before), so
+    // it starts only once a read found the socket empty.
     void wait_for_bytes(const std::shared_ptr<Client> &client)
     {
         client->reading = true;
@@ -293,36 +299,54 @@ struct Network::State final : Bus {
                                   });
     }
 
-    // One read of what the client sent, passed on frame by frame. A read
-    // that fills the buffer may have left more: the next one is posted, so
-    // that other sockets get their turn in between.
-    void read_from(const std::shared_ptr<Client> &client)
+    // One read of what the client sent, passed on frame by frame; returns
+    // whether bytes came. A read that fills the buffer may have left more:
+    // the next one is posted, so that other sockets get their turn in
+    // between. After a shorter one the client is read again at the next
+    // service(), before any wait: a client that streams has sent more by
+    // then, and that read saves a wait and a system call to start it.
+    bool read_from(const std::shared_ptr<Client> &client)
     {
         if (client->closed || client->reading || client->full_queues > 0)
-            return;
+            return false;
         std::error_code error;
         size_t count = client->socket.read_some(asio::buffer(client->input), error);
         if (error == asio::error::would_block || error == asio::error::try_again) {
             wait_for_bytes(client);
-            return;
+            return false;
         }
         if (error) {
             close(*client, nullptr); // closed by the peer, or failed
-            return;
+            return false;
         }
         client->heard = connections::Clock::now();
         if (!client->reader.feed(client->input.data(), count)) {
             close(*client, "it sent a frame longer than the protocol allows");
-            return;
+            return true;
         }
         while (auto frame = client->reader.next())
             broadcast_from_client(*client, *frame);
         if (client->closed || client->full_queues > 0)
-            return; // deliver_to_boards reads it again once there is room
+            return true; // deliver_to_boards reads it again once there is room
         if (count == client->input.size())
             start_read(client);
         else
-            wait_for_bytes(client);
+            client->read_again = true;
+        return true;
+    }
+
+    // Reads the clients marked by read_from; returns whether any had sent
+    // more.
+    bool read_clients_again()
+    {
+        bool heard = false;
+        for (const auto &client : clients) {
+            if (!client->read_again)
+                continue;
+            client->read_again = false;
+            heard |= read_from(client);
+        }
+        return heard;
     }
 
     // Sends what waits for the client, as much as its socket takes now, in
@@ -585,12 +609,17 @@ void Network::service(int timeout_ms)
     // What the boards said since the last call leaves before any wait.
     state.flush_clients();
     state.deliver_to_boards();
-    if (state.io.stopped())
-        state.io.restart();
-    // Waits for the first event if asked to, then handles what is ready.
-    if (timeout_ms > 0)
-        state.io.run_one_for(std::chrono::milliseconds(timeout_ms));
-    for (int i = 0; i < max_events_per_service && state.io.poll_one() > 0; i++) {
+    bool heard = state.read_clients_again();
+    if (!heard || ++state.passes_without_events >= passes_between_events) {
+        state.passes_without_events = 0;
+        if (state.io.stopped())
+            state.io.restart();
+        // Waits for the first event if asked to (unless a client has just
+        // been heard), then handles what is ready.
+        if (timeout_ms > 0 && !heard)
+            state.io.run_one_for(std::chrono::milliseconds(timeout_ms));
+        for (int i = 0; i < max_events_per_service && state.io.poll_one() > 0; i++) {
+        }
     }
     state.sweep();
     // What arrived while waiting reaches the boards before this returns, so
