@@ -136,6 +136,11 @@ struct Options {
 // robots' millisecond of firmware does.
 constexpr size_t robots_per_thread = 16;
 
+// Polls of one robot between two passes of the network without the arena,
+// at most: enough for the frames one pass brings, few enough that a robot
+// whose program never rests does not keep the network waiting.
+constexpr int polls_per_pass = 32;
+
 // The threads the arena's firmware runs on: as asked, else one per core
 // while each gets enough robots.
 unsigned firmware_threads(const Options &options, size_t robots)
@@ -776,10 +781,16 @@ int main(int argc, char **argv)
             break;
         uint32_t now_ms =
           uint32_t(std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count());
+        // Each robot works through what it has (a frame per poll) before the
+        // network's next pass, as in the arena: a pass per frame would cost
+        // each event a whole round of the sockets.
         bool busy = false;
         for (auto &robot : robots) {
             host_board_set_time(&robot->board, now_ms);
-            busy |= host_robot_poll(robot.get());
+            bool robot_busy = true;
+            for (int poll = 0; robot_busy && poll < polls_per_pass; poll++)
+                robot_busy = host_robot_poll(robot.get());
+            busy |= robot_busy;
         }
         memories.sync();
         // Wait for the network only when no robot has work left; the robots'
