@@ -324,12 +324,103 @@ size_t aligned(size_t bytes)
 
 } // namespace
 
-void FreshIRSensor::init(double dt, Enki::World *world)
+FreshIRSensor::FreshIRSensor(Enki::Robot *robot,
+                             Enki::Vector position,
+                             double sensor_height,
+                             double heading,
+                             double reach,
+                             double response_maximum,
+                             double response_x0,
+                             double response_c,
+                             double noise_sd)
+  : Enki::IRSensor(robot,
+                   position,
+                   sensor_height,
+                   heading,
+                   reach,
+                   response_maximum,
+                   response_x0,
+                   response_c,
+                   noise_sd)
 {
-    Enki::IRSensor::init(dt, world);
+    for (unsigned i = 0; i < ray_count; i++) {
+        double angle = heading + rayAngles.at(i);
+        ray_directions_[i] = Enki::Vector(std::cos(angle), std::sin(angle));
+    }
+}
+
+void FreshIRSensor::init(double, Enki::World *)
+{
+    start_step(Enki::Matrix22(owner->angle));
+}
+
+void FreshIRSensor::start_step(const Enki::Matrix22 &owner_rotation)
+{
+    // Debian's IRSensor::init, operation for operation (the same values
+    // bit for bit), with the rotation given.
+    std::fill(rayDists.begin(), rayDists.end(), range);
+    absPos = owner->pos + owner_rotation * pos;
+    absOrientation = owner->angle + orientation;
+    for (size_t i = 0; i < rayCount; i++)
+        absRayAngles[i] = absOrientation + rayAngles[i];
+    absSmartPos = owner_rotation * smartPos + absPos;
     // Debian's Enki forgets this (upstream fix 7dbaa0b): without it a ray
     // that meets nothing this step keeps last step's value.
     std::fill(rayValues.begin(), rayValues.end(), 0.0);
+    for (unsigned i = 0; i < ray_count; i++)
+        world_ray_directions_[i] = owner_rotation * ray_directions_[i];
+}
+
+void FreshIRSensor::objectStep(double dt, Enki::World *world, Enki::PhysicalObject *object)
+{
+    // Debian's IRSensor::objectStep, operation for operation where it
+    // computes, with the rays that cannot reach the object skipped.
+    if (height > object->getHeight())
+        return;
+    // The object's bounding circle beyond the circle around the rays.
+    const double radius = object->getRadius();
+    const Enki::Vector from_rays_middle = object->pos - absSmartPos;
+    const double radius_sum = radius + smartRadius;
+    if (from_rays_middle.norm2() > radius_sum * radius_sum)
+        return;
+    // A ray goes on only if its line passes within the bounding circle, at
+    // a distance whose square Enki works out as |v|² sin²(ray angle -
+    // atan2(v)). The cross product with the ray's direction gives it too;
+    // both are within about 1e-13 of the exact value at these distances,
+    // and the margin (1e-6 of it) is far wider: a ray skipped here is one
+    // that Enki's test rejects.
+    const Enki::Vector to_centre = object->pos - absPos;
+    const double reach_squared = radius * radius * (1 + 1e-6) + 1e-9;
+    std::array<bool, ray_count> may_reach{};
+    bool any_may_reach = false;
+    for (unsigned i = 0; i < ray_count; i++) {
+        const Enki::Vector &direction = world_ray_directions_[i];
+        double across = direction.x * to_centre.y - direction.y * to_centre.x;
+        may_reach[i] = across * across <= reach_squared;
+        any_may_reach = any_may_reach || may_reach[i];
+    }
+    if (!any_may_reach)
+        return;
+    if (!object->isCylindric()) {
+        // A box: Enki's polygon test (the obstacles, few).
+        Enki::IRSensor::objectStep(dt, world, object);
+        return;
+    }
+    // Enki's test of a circle, which works out the arc tangent again for
+    // every ray: the same value.
+    const double bearing = to_centre.angle();
+    const double squared_radius = radius * radius;
+    for (unsigned i = 0; i < ray_count; i++) {
+        if (!may_reach[i])
+            continue;
+        const double sine = std::sin(absRayAngles[i] - bearing);
+        const double across_squared = to_centre.norm2() * (sine * sine);
+        if (across_squared <= squared_radius) {
+            double distance = std::sqrt(to_centre.norm2() - across_squared) -
+                              std::sqrt(squared_radius - across_squared);
+            updateRay(i, std::max(distance, 0.));
+        }
+    }
 }
 
 namespace
@@ -380,6 +471,16 @@ EnkiEpuck::EnkiEpuck(double wheel_noise, double camera_half_field_radians, bool 
         addLocalInteraction(&camera);
     setCylindric(body_radius, body_height, body_mass);
     setColor(body_color);
+}
+
+void EnkiEpuck::initLocalInteractions(double dt, Enki::World *world)
+{
+    // Each sensor is independent: the order of their starts does not matter.
+    const Enki::Matrix22 rotation(angle);
+    for (FreshIRSensor &sensor : infrared)
+        sensor.start_step(rotation);
+    if (sensor_count() > ir_count)
+        camera.init(dt, world);
 }
 
 void EnkiEpuck::applyForces(double dt)
