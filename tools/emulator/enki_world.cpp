@@ -280,28 +280,53 @@ unsigned rounded_level(double level)
     return level - whole >= 0.5 ? whole + 1 : whole;
 }
 
+// A pixel's RGB565 bytes, high byte first (hardware §3.5), into `bytes`.
+void rgb565_bytes(const Color &color, uint8_t *bytes)
+{
+    unsigned red = rounded_level(color.red * rgb565_red_levels);
+    unsigned green = rounded_level(color.green * rgb565_green_levels);
+    unsigned blue = rounded_level(color.blue * rgb565_blue_levels);
+    uint16_t word = uint16_t(red << 11 | green << 5 | blue);
+    bytes[0] = uint8_t(word >> 8);
+    bytes[1] = uint8_t(word & 0xFF);
+}
+
 uint8_t world_camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 {
     RobotState &state = state_of(context);
     if (index >= camera_row_bytes)
         return 0;
     if (state.rendered_step != state.world->steps() || state.rendered_row != row) {
-        // RGB565, high byte first (hardware §3.5).
         Color pixels[camera_row_pixels];
         state.world->camera_row(state.index, row, pixels);
-        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
-            const Color &color = pixels[pixel];
-            unsigned red = rounded_level(color.red * rgb565_red_levels);
-            unsigned green = rounded_level(color.green * rgb565_green_levels);
-            unsigned blue = rounded_level(color.blue * rgb565_blue_levels);
-            uint16_t word = uint16_t(red << 11 | green << 5 | blue);
-            state.row_bytes[2 * pixel] = uint8_t(word >> 8);
-            state.row_bytes[2 * pixel + 1] = uint8_t(word & 0xFF);
-        }
+        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++)
+            rgb565_bytes(pixels[pixel], &state.row_bytes[2 * pixel]);
         state.rendered_step = state.world->steps();
         state.rendered_row = row;
     }
     return state.row_bytes[index];
+}
+
+void world_camera_every_second_pixel(void *context,
+                                     uint16_t row,
+                                     uint16_t pixels,
+                                     uint64_t,
+                                     uint8_t *bytes)
+{
+    // The bytes world_camera_byte gives, of the pixels read only: the row's
+    // pixels are worked out one by one, each the same alone.
+    RobotState &state = state_of(context);
+    Color colors[camera_row_pixels];
+    state.world->camera_row(state.index, row, colors, 2);
+    for (unsigned pixel = 0; pixel < pixels; pixel++) {
+        uint8_t *pixel_bytes = bytes + 2 * pixel;
+        if (2 * pixel < camera_row_pixels) {
+            rgb565_bytes(colors[2 * pixel], pixel_bytes);
+        } else {
+            pixel_bytes[0] = 0;
+            pixel_bytes[1] = 0;
+        }
+    }
 }
 
 Color from_enki(const Enki::Color &color)
@@ -569,7 +594,8 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
                          world_camera_byte,
                          world_next_input_change,
                          world_adc_read_channels,
-                         world_adc_channels_steady };
+                         world_adc_channels_steady,
+                         world_camera_every_second_pixel };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);
@@ -842,7 +868,7 @@ const PixelRays &pixel_rays()
 
 } // namespace
 
-void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
+void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned pixel_step) const
 {
     const EnkiEpuck &robot = *robots_.at(index);
     // How far below the horizon the row looks.
@@ -852,7 +878,7 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
     if (depression <= 0) {
         // Above the horizon: what Enki's camera sees. Enki's pixel 0 is the
         // rightmost, the window's pixel 0 the leftmost.
-        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
+        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel += pixel_step) {
             unsigned enki_pixel =
               EnkiEpuck::camera_pixels - 1 - pixel * EnkiEpuck::camera_pixels / camera_row_pixels;
             pixels[pixel] = from_enki(robot.camera.image[enki_pixel]);
@@ -893,7 +919,7 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
             near.push_back(occluder);
     }
     const PixelRays &rays = pixel_rays();
-    for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
+    for (unsigned pixel = 0; pixel < camera_row_pixels; pixel += pixel_step) {
         // The pixel's ray turned by the robot's heading.
         Enki::Vector direction(forward.x * rays[pixel].x - forward.y * rays[pixel].y,
                                forward.y * rays[pixel].x + forward.x * rays[pixel].y);

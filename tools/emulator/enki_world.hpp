@@ -177,8 +177,9 @@ class EnkiWorld
     double right_wheel_speed(size_t index) const;
 
     // The colours robot `index`'s modelled camera sees on `row` (0 = top of
-    // the 120-row window), 120 pixels from left to right, into `pixels`.
-    void camera_row(size_t index, unsigned row, Color *pixels) const;
+    // the 120-row window), 120 pixels from left to right, into `pixels`;
+    // with `pixel_step` 2, pixels 0, 2, 4... only (the others untouched).
+    void camera_row(size_t index, unsigned row, Color *pixels, unsigned pixel_step = 1) const;
 
     // The boards' time at the end of the last step, in processor cycles
     // (HOST_CYCLES_PER_SECOND a second).
