@@ -508,6 +508,22 @@ void EnkiEpuck::initLocalInteractions(double dt, Enki::World *world)
         camera.init(dt, world);
 }
 
+void EnkiEpuck::doLocalInteractions(double dt, Enki::World *world, Enki::PhysicalObject *object)
+{
+    // Robot::doLocalInteractions in its arithmetic: the interactions in
+    // Enki's order (longest reach first) while the object is within reach.
+    const Enki::Vector from_object(pos.x - object->pos.x, pos.y - object->pos.y);
+    for (Enki::LocalInteraction *interaction : localInteractions) {
+        const double reach = interaction->getRange() + object->getRadius();
+        if (!(from_object.norm2() < reach * reach))
+            return;
+        if (interaction == &camera)
+            interaction->objectStep(dt, world, object);
+        else
+            static_cast<FreshIRSensor *>(interaction)->FreshIRSensor::objectStep(dt, world, object);
+    }
+}
+
 void EnkiEpuck::applyForces(double dt)
 {
     // The wheels set the velocity; remember it to see what collisions change.

@@ -107,6 +107,9 @@ class EnkiEpuck : public Enki::DifferentialWheeled
     // Enki's, with the heading's sine and cosine worked out once for all
     // the IR sensors.
     void initLocalInteractions(double dt, Enki::World *world) override;
+    // Enki's, with the IR sensors called directly rather than through
+    // their virtual objectStep.
+    void doLocalInteractions(double dt, Enki::World *world, Enki::PhysicalObject *object) override;
     void applyForces(double dt) override;
     void controlStep(double dt) override;
     void collisionEvent(Enki::PhysicalObject *other) override;
