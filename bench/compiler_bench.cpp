@@ -8,14 +8,26 @@
 //     compiler (Debian's libasebacompiler), which must produce the same words.
 //
 //   bench-compiler RUNS     prints one line per figure: name, ours ms, reference ms
+//   bench-compiler processes RUNS
+//       the whole process, start-up included: `asebac examples/paper-annex.aesl
+//       -o /dev/null` beside bench-reference-compile (the reference compiler
+//       behind the least of a command) on the same controller in today's
+//       dialect, one after the other RUNS times; prints name, ours ms,
+//       reference ms, each the median
 //
 // scripts/bench.sh runs it from the repo root.
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fcntl.h>
+#include <spawn.h>
 #include <stdexcept>
 #include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+#include <vector>
 
 #include "tests/compiler/reference_oracle.hpp"
 #include "tools/compiler/compiler.hpp"
@@ -32,6 +44,8 @@ constexpr int generated_lines = 1000;
 constexpr int scalar_count = 20;
 constexpr int buffer_size = 16;
 constexpr uint16_t roomy_bytecode_words = 30000; // the script needs far more than 512
+constexpr const char *asebac_path = "build/host/bin/asebac";
+constexpr const char *reference_compile_path = "build/host/bin/bench-reference-compile";
 
 // A deterministic script of exactly `generated_lines` lines: declarations,
 // then blocks of assignments with arithmetic, array accesses, conditions,
@@ -137,10 +151,52 @@ void bench_paper_annex_today(int runs)
     bench_both("paper-annex-today", runs, program.source, aseba::epuck_target(), definitions);
 }
 
+// Runs `argv` to its end, its output thrown away; returns the wall-clock ms.
+double process_ms(const std::vector<const char *> &argv)
+{
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
+    posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+    std::vector<char *> arguments;
+    for (const char *argument : argv)
+        arguments.push_back(const_cast<char *>(argument));
+    arguments.push_back(nullptr);
+    auto begin = std::chrono::steady_clock::now();
+    pid_t pid = -1;
+    int status = -1;
+    if (posix_spawn(&pid, arguments[0], &actions, nullptr, arguments.data(), environ) != 0 ||
+        waitpid(pid, &status, 0) != pid || !WIFEXITED(status) || WEXITSTATUS(status) != 0)
+        throw std::runtime_error(std::string(argv[0]) + " " + argv[1] + " failed");
+    auto end = std::chrono::steady_clock::now();
+    posix_spawn_file_actions_destroy(&actions);
+    return std::chrono::duration<double, std::milli>(end - begin).count();
+}
+
+double median_ms(std::vector<double> values)
+{
+    std::sort(values.begin(), values.end());
+    return values[values.size() / 2];
+}
+
+void bench_processes(int runs)
+{
+    std::vector<double> ours, reference;
+    for (int run = 0; run < runs; run++) {
+        ours.push_back(process_ms({ asebac_path, paper_annex_path, "-o", "/dev/null" }));
+        reference.push_back(process_ms({ reference_compile_path, paper_annex_today_path }));
+    }
+    std::printf("process-paper-annex\t%.3f\t%.3f\n", median_ms(ours), median_ms(reference));
+}
+
 } // namespace
 
 int main(int argc, char **argv)
 try {
+    if (argc > 2 && std::string(argv[1]) == "processes") {
+        bench_processes(std::max(1, std::atoi(argv[2])));
+        return 0;
+    }
     int runs = argc > 1 ? std::max(1, std::atoi(argv[1])) : 10;
     if (argc > 2 && std::string(argv[2]) == "--print-generated") {
         std::fputs(generated_script().c_str(), stdout);

@@ -24,6 +24,14 @@ bench-compiler_SOURCES := bench/compiler_bench.cpp tests/compiler/reference_orac
 bench-compiler_LIBS := $(BENCH_COMPILER_LIBS) aseba_vm
 bench-compiler_LDLIBS := -lasebacompiler -lasebacommon
 
+# The reference compiler as a process (Debian has no compiler command), for
+# the whole-process figure: bench-compiler runs it beside asebac.
+PROGRAMS += bench-reference-compile
+bench-reference-compile_SOURCES := bench/reference_compile.cpp tests/compiler/reference_oracle.cpp \
+                                   tests/compiler/reference_containment.cpp
+bench-reference-compile_LIBS := $(BENCH_COMPILER_LIBS) aseba_vm
+bench-reference-compile_LDLIBS := -lasebacompiler -lasebacommon
+
 # The node over loopback TCP (epuck-emu against asebadummynode) and the
 # simulator's CPU cost per robot; epuck-emu is run, not linked.
 PROGRAMS += bench-node

@@ -99,6 +99,11 @@ DSPIC30_LDFLAGS = -mcpu=30F6014A $(DSPIC_OMF) -nostartfiles -nostdlib \
 # The bootloader's code is above PC 0xFFFF and has no room for a handle
 # table below it (fact sheet §5.2): it takes no function pointers.
 DSPIC30_BOOTLOADER_LDFLAGS := ,--gc-sections,--no-handles
+# The application keeps only what its entry point, its vectors and its
+# descriptor reach (the linker script KEEPs those): the host-only parts of
+# the portable layers (a node's helpers the e-puck never calls) drop out,
+# 410 instruction words.
+DSPIC30_APPLICATION_LDFLAGS := ,--gc-sections
 EPUCK_IMAGE_TOOL := $(BUILD)/host/bin/epuck-image
 
 ifeq ($(TARGET),dspic30)
@@ -132,7 +137,7 @@ $(DSPIC30_OUT)/obj/%.o: %.s | dspic30-toolchain
 
 $(DSPIC30_OUT)/epuck-aseba-application.elf: $(DSPIC30_APPLICATION_OBJECTS) \
                                             $(DSPIC30_APPLICATION_SCRIPT) $(DSPIC30_SCRIPTS_INCLUDED) | dspic30-toolchain
-	$(DSPIC_GCC) $(call DSPIC30_LDFLAGS,$(DSPIC30_APPLICATION_SCRIPT),$@) \
+	$(DSPIC_GCC) $(call DSPIC30_LDFLAGS,$(DSPIC30_APPLICATION_SCRIPT),$@,$(DSPIC30_APPLICATION_LDFLAGS)) \
 	    $(DSPIC30_APPLICATION_OBJECTS) -o $@ > $(@:.elf=.memory) || \
 	  scripts/check-dspic30-images.py --overflow $(DSPIC_PREFIX) $(DSPIC30_APPLICATION_SCRIPT) \
 	    program $(DSPIC30_APPLICATION_OBJECTS)

@@ -18,9 +18,10 @@ arena_experiment_test_LIBS = aseba_dangerous_areas $(arena_test_LIBS)
 arena_experiment_test_LDLIBS = $(arena_test_LDLIBS)
 
 # The network on bare host boards and loopback sockets: per-robot ports, and
-# what no client can do (flood it, stall it, reach it from afar).
+# what no client can do (flood it, stall it, reach it from afar), and every
+# frame crossing once and in order.
 TESTS += network_test
 network_test_SOURCES := tests/arena/network_robot_port_test.cpp \
-                      tests/arena/network_limits_test.cpp
+                      tests/arena/network_limits_test.cpp tests/arena/network_order_test.cpp
 network_test_LIBS := aseba_emulator_network aseba_host_board
 network_test_LDLIBS := -lgtest -lgtest_main -pthread

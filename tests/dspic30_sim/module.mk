@@ -164,3 +164,18 @@ $(BUILD)/host-sanitize/tests/dspic30_deployment_test: tests/dspic30_sim/deployme
 $(BUILD)/host-sanitize/tests/dspic30_power_cut_%_test: tests/dspic30_sim/power_cut_test.py \
                                                       $(DSPIC30_DEPLOYMENT_INPUTS)
 	$(call DSPIC30_SCRIPT_WRAPPER,power_cut_test.py,$*)
+
+# The factory image as a robot of the arena (tools/emulator/dspic30_robot.hpp),
+# checked against the host-built robot in the same world.
+TESTS += dspic30_arena_robot_test
+dspic30_arena_robot_test_SOURCES := tests/dspic30_sim/arena_robot_test.cpp
+dspic30_arena_robot_test_LIBS := aseba_dspic30_robot dspic30_sim aseba_client aseba_arena \
+                                 aseba_emulator_network aseba_host_robot aseba_flash aseba_firmware \
+                                 aseba_epuck aseba_store aseba_bootloader aseba_host_board \
+                                 aseba_compiler aseba_node aseba_vm aseba_natives
+dspic30_arena_robot_test_LDLIBS := -lenki $(DSPIC30_SIM_TEST_LDLIBS)
+EXTRA_CFLAGS_tests/dspic30_sim/arena_robot_test := \
+    '-DDSPIC30_FACTORY_HEX="$(DSPIC30_OUT)/epuck-aseba-factory.hex"' \
+    '-DDSPIC30_APPLICATION_MAP="$(DSPIC30_OUT)/epuck-aseba-application.map"'
+$(BUILD)/host-sanitize/tests/dspic30_arena_robot_test \
+$(BUILD)/host/tests/dspic30_arena_robot_test: | $(DSPIC30_OUT)/epuck-aseba-factory.hex

@@ -410,13 +410,13 @@ struct TcpRun {
     FILE *pipe = nullptr;
     uint16_t port = 0;
 
-    explicit TcpRun(const std::string &arguments)
+    explicit TcpRun(const std::string &arguments, const std::string &uart = "UART1")
     {
         pipe = popen((std::string(DSPIC30_SIM) + " " + arguments + " 2>/dev/null").c_str(), "r");
         char line[128] = "";
         if (std::fgets(line, sizeof line, pipe) != nullptr) {
             const std::string text = line;
-            const std::string prefix = "dspic30-sim: UART1 on tcp:localhost;";
+            const std::string prefix = "dspic30-sim: " + uart + " on tcp:localhost;";
             if (text.rfind(prefix, 0) == 0)
                 port = static_cast<uint16_t>(std::stoi(text.substr(prefix.size())));
         }
@@ -485,6 +485,41 @@ TEST(Program, Uart1TcpTargetsAndPortsInUse)
     close(taken);
     EXPECT_EQ(in_use.status, 1);
     EXPECT_NE(in_use.output.find("Address already in use"), std::string::npos) << in_use.output;
+}
+
+// --uart2: UART2's registers (0x0216-0x021E) on their own TCP port, UART1
+// left on standard input and output; one UART at most on stdio.
+TEST(Program, Uart2OnTcpEchoes)
+{
+    test::ScratchFolder folder;
+    const std::string program = image(folder, "echo2.hex", R"(
+        .text
+        goto start
+        .org 0x100
+start:  mov #7, w0
+        mov w0, 0x021E          ; U2BRG: 115200 baud
+        mov #0x8000, w0
+        mov w0, 0x0216          ; U2MODE
+        mov #0x0400, w0
+        mov w0, 0x0218          ; U2STA: UTXEN
+wait:   btss 0x0218, #0         ; URXDA
+        bra wait
+        mov 0x021C, w1
+        mov w1, 0x021A
+        bra wait
+)");
+    TcpRun run("--uart1 none --uart2 tcp:0 --cycles 14745600 " + program, "UART2");
+    ASSERT_NE(run.port, 0) << "no UART2 port announced";
+    const int client = connect_to(run.port);
+    ASSERT_GE(client, 0);
+    ASSERT_EQ(send(client, "uv", 2, 0), 2);
+    EXPECT_EQ(receive(client, 2, 1000), "uv");
+    close(client);
+    EXPECT_EQ(run.finish(), 0);
+    const ProgramRun both = simulator("--uart1 stdio --uart2 stdio " + program);
+    EXPECT_EQ(both.status, 2);
+    EXPECT_NE(both.output.find("cannot both be on stdio"), std::string::npos) << both.output;
+    EXPECT_EQ(simulator("--uart2 tcp:x " + program).status, 2);
 }
 
 // The reader alone: bin2hex's layout and the faults it names.

@@ -633,6 +633,44 @@ done:   bra done
     EXPECT_EQ(m.cpu().w(6) & 0x0001, 0) << "URXDA after four reads";
 }
 
+// Fact sheet §2.1 and §1.7: UART2 has UART1's registers at 0x0216-0x021E
+// and its own interrupts (U2RX vector 32, IFS1/IEC1 bit 8); what it sends
+// reaches UART2's host stream, not UART1's.
+TEST(Uart, SecondUartHasItsOwnRegistersAndInterrupts)
+{
+    Machine m(R"(
+start:  mov #0x8000, w0
+        mov w0, 0x0216          ; U2MODE: UARTEN, BRG = 0
+        mov #0x0400, w0
+        mov w0, 0x0218          ; U2STA: UTXEN
+        mov #'Q', w0
+        mov w0, 0x021A          ; U2TXREG
+        bset 0x008E, #8         ; IEC1: U2RXIE
+        mov #2000, w1
+wait:   dec w1, w1
+        bra nz, wait
+done:   bra done
+rx:     mov 0x021C, w8          ; U2RXREG
+        bclr 0x0086, #8         ; IFS1: U2RXIF
+        retfie
+)");
+    std::string uart1_sent, uart2_sent;
+    std::deque<int> uart2_input{ 'k' };
+    m.simulator().connect_uart2([&](uint8_t b) { uart2_sent += static_cast<char>(b); },
+                                [&]() {
+                                    if (uart2_input.empty())
+                                        return -1;
+                                    const int b = uart2_input.front();
+                                    uart2_input.pop_front();
+                                    return b;
+                                });
+    m.vector(8 + 24, "rx");
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_EQ(uart2_sent, "Q");
+    EXPECT_EQ(m.cpu().w(8), 'k') << "the U2RX interrupt read the byte";
+    EXPECT_EQ(m.data(0x0212), 0) << "UART1's receiver saw nothing";
+}
+
 // Fact sheet §1.5: FWDTEN = 1 runs the watchdog (2 ms x prescalers); CLRWDT
 // restarts it, else it resets the chip with RCON.WDTO.
 TEST(Watchdog, ResetsUnlessCleared)

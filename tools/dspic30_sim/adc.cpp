@@ -146,6 +146,9 @@ void Adc::start_conversion(uint64_t now)
 {
     phase_ = Phase::converting;
     done_ = false;
+    // The sample-and-hold keeps the input's level at the end of sampling.
+    held_ = input_source_ ? static_cast<uint16_t>(input_source_(channel_, now) & full_scale)
+                          : inputs_[channel_];
     phase_end_ = now + tad_cycles(conversion_tads);
 }
 
@@ -153,7 +156,7 @@ void Adc::finish_conversion(uint64_t now)
 {
     // An input left digital (its ADPCFG bit set) converts as 0.
     const bool analog = !(adpcfg_ & (1u << channel_));
-    buffer_[static_cast<std::size_t>(filled_ % channels)] = analog ? inputs_[channel_] : 0;
+    buffer_[static_cast<std::size_t>(filled_ % channels)] = analog ? held_ : 0;
     done_ = true;
     const int wanted = ((adcon2_ & adcon2_smpi) >> adcon2_smpi_shift) + 1;
     if (++filled_ >= wanted) {

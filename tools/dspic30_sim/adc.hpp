@@ -12,7 +12,8 @@
 // formats, the alternating MUX (ALTS), the split buffer (BUFM), the other
 // conversion triggers and the internal RC clock (ADRC) are not modelled.
 // The analog inputs' values (0-4095) are set by the simulator's host
-// (set_input: 0 until then).
+// (set_input: 0 until then), or asked of it when the sample is held, at the
+// start of each conversion (set_input_source).
 
 #pragma once
 
@@ -21,6 +22,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 
 namespace aseba::dspic30
 {
@@ -37,6 +39,12 @@ class Adc : public Peripheral
 
     // The value (0-4095) input ANn gives from now on.
     void set_input(int channel, uint16_t value);
+    // From now on input ANn gives `source(n, cycle)` (0-4095), asked at the
+    // cycle its sample is held; empty: the values of set_input.
+    void set_input_source(std::function<uint16_t(int channel, uint64_t cycle)> source)
+    {
+        input_source_ = std::move(source);
+    }
 
     uint16_t read(uint16_t address) override;
     void write(uint16_t address, uint16_t value, uint16_t mask) override;
@@ -64,6 +72,8 @@ class Adc : public Peripheral
     int channel_ = 0;            // the input being sampled or converted
     int scan_last_ = -1;         // the last input of ADCSSL taken (-1: none yet)
     int filled_ = 0;             // results since the last interrupt
+    uint16_t held_ = 0;          // the sample being converted
+    std::function<uint16_t(int, uint64_t)> input_source_;
 };
 
 } // namespace aseba::dspic30

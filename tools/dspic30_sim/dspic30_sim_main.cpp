@@ -15,6 +15,7 @@
 #include "tools/dspic30_sim/wall_clock_pace.hpp"
 
 #include <csignal>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -39,7 +40,8 @@ constexpr double chip_cycles_per_second = 14745600;
 constexpr uint64_t tcp_slice_cycles = 14746;
 
 constexpr const char *usage =
-  "usage: dspic30-sim [--uart1 stdio|none|tcp:PORT] [--speed FACTOR] [--memory FILE]\n"
+  "usage: dspic30-sim [--uart1 stdio|none|tcp:PORT] [--uart2 none|stdio|tcp:PORT]\n"
+  "                   [--speed FACTOR] [--memory FILE]\n"
   "                   [--power-cut-at K] [--cycles N] [--timeout SECONDS]\n"
   "                   [--input-after N] [--until-exit] [--illegal stop|nop] [--trace]\n"
   "                   [IMAGE.hex]";
@@ -48,8 +50,9 @@ constexpr const char *details =
   R"(Runs IMAGE.hex on a simulated dsPIC30F6014A (the e-puck's chip) from
 reset: the CPU and its DSP engine, 48 K words of flash, 8 KB of RAM, the
 data EEPROM, the NVM controller, traps, interrupts, the watchdog, timers
-1-5, UART1, the I/O ports (inputs all low), the 12-bit ADC (inputs all
-at 0) and the I2C master (no device on the bus); no other peripheral yet
+1-5, UART1 and UART2, the I/O ports (inputs all low), the 12-bit ADC
+(inputs all at 0) and the I2C master (no device on the bus); no other
+peripheral yet
 (docs/dspic30-sim.md says what is modelled). The image is read as
 pic30-elf-bin2hex writes it: byte address = 2 x PC address, 4 bytes per
 instruction word, the fourth 0.
@@ -67,6 +70,9 @@ one is connected by the system but served only once the first leaves; with
 none, what the robot sends is lost. Simulated time then keeps pace with the
 wall clock at the chip's 14.7456 MHz (--speed 1), so that the firmware's
 timeouts last as long as on a robot; --speed 0 runs as fast as it can.
+--uart2 takes the same modes for UART2 (default none: unconnected),
+announced as "dspic30-sim: UART2 on tcp:localhost;PORT"; one UART at most
+on standard input and output.
 
 With --memory FILE the flash, the data EEPROM and the configuration words
 are kept in FILE between runs: when FILE exists the chip starts with it
@@ -91,11 +97,13 @@ stopped by Ctrl-C or SIGTERM or by its power cut; 1 when it printed
 "EXIT n" (n != 0) or "ABORT", kept resetting on traps, hit an illegal
 instruction or the wall-clock watchdog, or when the TCP port cannot be
 opened (in use) or the memory file written; 2 on bad usage (a malformed
---uart1 target) or an image or memory file that cannot be read or loaded.)";
+--uart1 or --uart2 target, both on stdio) or an image or memory file that
+cannot be read or loaded.)";
 
 struct Options {
     std::string image;
     std::string uart1 = "stdio";
+    std::string uart2 = "none";
     double speed = 1;
     std::string memory;
     uint64_t power_cut_at = 0;
@@ -124,6 +132,10 @@ Options parse_command_line(int argc, char **argv)
                   o.uart1,
                   "stdio: UART1 on standard input and output; none: unconnected;\n"
                   "tcp:PORT: a TCP server on 127.0.0.1:PORT (0: a free port)")
+      ->type_name("MODE");
+    app
+      .add_option(
+        "--uart2", o.uart2, "the same for UART2 (default none); one UART at most on stdio")
       ->type_name("MODE");
     app
       .add_option("--speed",
@@ -282,6 +294,59 @@ void load_memory(Simulator &simulator, const Options &options)
     }
 }
 
+// What a UART is connected to (--uart1, --uart2): nothing, standard input
+// and output, or a TCP server.
+struct UartEnd {
+    std::string name; // "UART1"
+    bool stdio = false;
+    std::unique_ptr<TcpLink> link;
+};
+
+// Opens the end that `mode` names for UART `name` ("stdio", "none",
+// "tcp:PORT"); exits with status 2 on a malformed mode, 1 when the port
+// cannot be opened.
+UartEnd open_uart_end(const std::string &name, const std::string &flag, const std::string &mode)
+{
+    UartEnd end;
+    end.name = name;
+    end.stdio = mode == "stdio";
+    if (end.stdio || mode == "none")
+        return end;
+    uint16_t port = 0;
+    try {
+        port = parse_tcp_target(mode);
+    } catch (const std::invalid_argument &e) {
+        cl::print_usage_error("dspic30-sim", flag + ": " + e.what() + " (stdio, none or tcp:PORT)");
+        std::exit(cl::EXIT_USAGE);
+    }
+    try {
+        end.link = std::make_unique<TcpLink>(port);
+    } catch (const LinkError &e) {
+        std::cerr << "dspic30-sim: " << e.what() << "\n";
+        std::exit(cl::EXIT_FAILED);
+    }
+    return end;
+}
+
+// Serves `end`'s TCP client, if any, and says on standard error when one
+// arrives or leaves.
+void service_uart_end(UartEnd &end, const Cpu &cpu)
+{
+    if (!end.link)
+        return;
+    const bool was_connected = end.link->connected();
+    end.link->service(0);
+    if (end.link->connected() == was_connected)
+        return;
+    // UART1's lines keep their words of before UART2 existed (scripts read them).
+    std::fprintf(stderr,
+                 "dspic30-sim: %sclient %s at cycle %llu (%.3f s)\n",
+                 end.name == "UART1" ? "" : (end.name + " ").c_str(),
+                 was_connected ? "gone" : "connected",
+                 static_cast<unsigned long long>(cpu.cycles()),
+                 static_cast<double>(cpu.cycles()) / chip_cycles_per_second);
+}
+
 // The exit status of a run that ended with `result`, after its report.
 int run_status(Cpu &cpu, const RunResult &result)
 {
@@ -306,24 +371,13 @@ int run_status(Cpu &cpu, const RunResult &result)
 int main(int argc, char **argv)
 {
     const Options options = parse_command_line(argc, argv);
-    const bool stdio = options.uart1 == "stdio";
-    std::unique_ptr<TcpLink> link;
-    if (!stdio && options.uart1 != "none") {
-        uint16_t port = 0;
-        try {
-            port = parse_tcp_target(options.uart1);
-        } catch (const std::invalid_argument &e) {
-            cl::print_usage_error(
-              "dspic30-sim", std::string("--uart1: ") + e.what() + " (stdio, none or tcp:PORT)");
-            return cl::EXIT_USAGE;
-        }
-        try {
-            link = std::make_unique<TcpLink>(port);
-        } catch (const LinkError &e) {
-            std::cerr << "dspic30-sim: " << e.what() << "\n";
-            return cl::EXIT_FAILED;
-        }
+    if (options.uart1 == "stdio" && options.uart2 == "stdio") {
+        cl::print_usage_error("dspic30-sim", "--uart1 and --uart2 cannot both be on stdio");
+        return cl::EXIT_USAGE;
     }
+    std::array<UartEnd, 2> uarts{ open_uart_end("UART1", "--uart1", options.uart1),
+                                  open_uart_end("UART2", "--uart2", options.uart2) };
+    const bool any_link = uarts[0].link || uarts[1].link;
 
     const Cpu *chip = nullptr; // set once the simulator exists
     const auto input = [&chip, after = options.input_after]() {
@@ -331,20 +385,28 @@ int main(int argc, char **argv)
             return -1;
         return read_standard_input();
     };
-    std::function<void(uint8_t)> output;
-    std::function<int()> receive;
-    if (link) {
-        output = [&link](uint8_t byte) { link->write_byte(byte); };
-        receive = [&link]() { return link->read_byte(); };
-    } else if (stdio) {
-        output = [](uint8_t byte) {
-            std::fputc(byte, stdout);
-            if (byte == '\n')
-                std::fflush(stdout);
-        };
-        receive = input;
-    }
-    Simulator simulator(output, receive);
+    // The byte streams of each UART's end (none: both empty).
+    const auto output_of = [](UartEnd &end) -> std::function<void(uint8_t)> {
+        if (end.link)
+            return [&end](uint8_t byte) { end.link->write_byte(byte); };
+        if (end.stdio)
+            return [](uint8_t byte) {
+                std::fputc(byte, stdout);
+                if (byte == '\n')
+                    std::fflush(stdout);
+            };
+        return {};
+    };
+    const auto input_of = [&input](UartEnd &end) -> std::function<int()> {
+        if (end.link)
+            return [&end]() { return end.link->read_byte(); };
+        if (end.stdio)
+            return input;
+        return {};
+    };
+    Simulator simulator(output_of(uarts[0]), input_of(uarts[0]));
+    if (uarts[1].link || uarts[1].stdio)
+        simulator.connect_uart2(output_of(uarts[1]), input_of(uarts[1]));
     chip = &simulator.cpu();
     load_memory(simulator, options);
     Cpu &cpu = simulator.cpu();
@@ -364,21 +426,19 @@ int main(int argc, char **argv)
 
     RunLimits limits;
     limits.cycles = options.cycles;
-    limits.seconds = options.timeout.value_or(link ? 0 : 60);
+    limits.seconds = options.timeout.value_or(any_link ? 0 : 60);
     limits.stop_at_exit_line = options.until_exit;
-    WallClockPace pace(link ? options.speed * chip_cycles_per_second : 0);
-    if (link) {
-        std::printf("dspic30-sim: UART1 on tcp:localhost;%u\n", unsigned(link->port()));
+    WallClockPace pace(any_link ? options.speed * chip_cycles_per_second : 0);
+    if (any_link) {
+        for (const UartEnd &end : uarts)
+            if (end.link)
+                std::printf("dspic30-sim: %s on tcp:localhost;%u\n",
+                            end.name.c_str(),
+                            unsigned(end.link->port()));
         std::fflush(stdout);
         simulator.set_between_slices(tcp_slice_cycles, [&] {
-            const bool was_connected = link->connected();
-            link->service(0);
-            if (link->connected() != was_connected)
-                std::fprintf(stderr,
-                             "dspic30-sim: client %s at cycle %llu (%.3f s)\n",
-                             was_connected ? "gone" : "connected",
-                             static_cast<unsigned long long>(cpu.cycles()),
-                             static_cast<double>(cpu.cycles()) / chip_cycles_per_second);
+            for (UartEnd &end : uarts)
+                service_uart_end(end, cpu);
             const auto wait = pace.wait_at(cpu.cycles());
             if (wait > WallClockPace::Clock::duration::zero())
                 std::this_thread::sleep_for(wait);
@@ -388,8 +448,9 @@ int main(int argc, char **argv)
         simulator.set_between_slices(uint64_t{ 1 } << 22, [] { return stop_signal == 0; });
     }
     const RunResult result = simulator.run(limits);
-    if (link)
-        link->service(0); // the last replies
+    for (UartEnd &end : uarts)
+        if (end.link)
+            end.link->service(0); // the last replies
     std::fflush(stdout);
     int status = run_status(cpu, result);
     if (!options.memory.empty()) {

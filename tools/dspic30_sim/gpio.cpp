@@ -63,7 +63,10 @@ uint16_t GpioPorts::read(uint16_t address)
     const Port &port = ports_[index];
     switch ((address - first_register) % port_stride) {
     case tris_offset: return port.tris;
-    case port_offset: return pins(static_cast<char>('A' + index));
+    case port_offset:
+        if (input_sampler_)
+            input_sampler_(static_cast<char>('A' + index));
+        return pins(static_cast<char>('A' + index));
     case latch_offset: return port.latch;
     default: return 0;
     }
@@ -71,7 +74,10 @@ uint16_t GpioPorts::read(uint16_t address)
 
 void GpioPorts::write(uint16_t address, uint16_t value, uint16_t mask)
 {
-    Port &port = ports_[(address - first_register) / port_stride];
+    const int index = (address - first_register) / port_stride;
+    Port &port = ports_[index];
+    const char letter = static_cast<char>('A' + index);
+    const uint16_t before = pins(letter);
     const auto merged = [&](uint16_t old) {
         return static_cast<uint16_t>(((old & ~mask) | (value & mask)) & port.implemented);
     };
@@ -79,6 +85,9 @@ void GpioPorts::write(uint16_t address, uint16_t value, uint16_t mask)
         port.tris = merged(port.tris);
     else // PORTx and LATx both write the latch
         port.latch = merged(port.latch);
+    const uint16_t after = pins(letter);
+    if (pins_changed_ && after != before)
+        pins_changed_(letter, before, after);
 }
 
 void GpioPorts::reset()

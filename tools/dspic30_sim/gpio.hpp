@@ -8,7 +8,9 @@
 // does not implement read 0 in all three, and so do port E's addresses.
 // The outside world's levels are set by the simulator's host
 // (set_input_levels: 0 for every pin until then; the e-puck's selector on
-// RG6-RG9 then reads position 0).
+// RG6-RG9 then reads position 0), or asked of it at each read of a PORTx
+// (set_input_sampler), and the host may watch the pins the program drives
+// (set_pins_changed).
 
 #pragma once
 
@@ -17,6 +19,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 
 namespace aseba::dspic30
 {
@@ -38,6 +41,18 @@ class GpioPorts : public Peripheral
     // What the pins of port `letter` show: the latch on outputs, the
     // outside levels on inputs.
     uint16_t pins(char letter) const;
+    // Calls `sampler(letter)` before each read of PORTx, so that the host
+    // sets the levels of that instant (set_input_levels); empty: none.
+    void set_input_sampler(std::function<void(char letter)> sampler)
+    {
+        input_sampler_ = std::move(sampler);
+    }
+    // Calls `changed(letter, before, after)` after each write of TRISx,
+    // PORTx or LATx that changed what the port's pins show.
+    void set_pins_changed(std::function<void(char letter, uint16_t before, uint16_t after)> changed)
+    {
+        pins_changed_ = std::move(changed);
+    }
 
     uint16_t read(uint16_t address) override;
     void write(uint16_t address, uint16_t value, uint16_t mask) override;
@@ -52,6 +67,8 @@ class GpioPorts : public Peripheral
 
     Cpu &cpu_;
     std::array<Port, port_count> ports_{};
+    std::function<void(char)> input_sampler_;
+    std::function<void(char, uint16_t, uint16_t)> pins_changed_;
 };
 
 } // namespace aseba::dspic30

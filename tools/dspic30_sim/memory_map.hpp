@@ -93,6 +93,7 @@ inline constexpr uint16_t U1STA = 0x020E;
 inline constexpr uint16_t U1TXREG = 0x0210;
 inline constexpr uint16_t U1RXREG = 0x0212;
 inline constexpr uint16_t U1BRG = 0x0214;
+inline constexpr uint16_t U2MODE = 0x0216; // U2STA ... U2BRG follow as for UART1
 
 inline constexpr uint16_t RCON = 0x0740;
 inline constexpr uint16_t OSCCON = 0x0742;

@@ -35,6 +35,14 @@ Simulator::Simulator(std::function<void(uint8_t)> output, std::function<int()> i
       uart1_ports,
       [this](uint8_t b) { uart_byte(b); },
       std::move(input))
+  , uart2_(
+      cpu_,
+      uart2_ports,
+      [this](uint8_t b) {
+          if (uart2_output_)
+              uart2_output_(b);
+      },
+      [this]() { return uart2_input_ ? uart2_input_() : -1; })
   , timers_(cpu_)
   , gpio_(cpu_)
   , adc_(cpu_)
@@ -42,6 +50,7 @@ Simulator::Simulator(std::function<void(uint8_t)> output, std::function<int()> i
   , output_(std::move(output))
 {
     uart1_.attach();
+    uart2_.attach();
     timers_.attach();
     gpio_.attach();
     adc_.attach();

@@ -1,4 +1,4 @@
-// A dsPIC30F6014A with UART1 on host byte streams, timers 1-5, the I/O
+// A dsPIC30F6014A with UART1 and UART2 on host byte streams, timers 1-5, the I/O
 // ports, the ADC and the I2C master, as dspic30-sim and the tests run it: load an image, run it
 // from reset under a cycle limit and a wall-clock watchdog, and stop at the line a test program
 // prints at its end ("EXIT n" or "ABORT", the convention of
@@ -67,6 +67,14 @@ class Simulator
     // implemented at.
     void load(const std::map<uint32_t, uint32_t> &words);
 
+    // UART2's transmitted bytes go to `output`, its input comes from `input`
+    // (-1: no byte waiting); until then UART2 is unconnected.
+    void connect_uart2(std::function<void(uint8_t)> output, std::function<int()> input)
+    {
+        uart2_output_ = std::move(output);
+        uart2_input_ = std::move(input);
+    }
+
     RunResult run(const RunLimits &limits);
 
     // Calls `hook` after each slice of `slice_cycles` of a run (the TCP
@@ -101,11 +109,14 @@ class Simulator
 
     Cpu cpu_;
     Uart uart1_;
+    Uart uart2_;
     Timers timers_;
     GpioPorts gpio_;
     Adc adc_;
     I2cMaster i2c_;
     std::function<void(uint8_t)> output_;
+    std::function<void(uint8_t)> uart2_output_;
+    std::function<int()> uart2_input_;
     std::string line_;
     bool watching_exit_ = false;
     std::optional<Outcome> line_outcome_;

@@ -25,6 +25,9 @@ struct UartPorts {
 inline constexpr UartPorts uart1_ports{ sfr::U1MODE,
                                         9,
                                         10 }; // IRQs (vectors 17, 18; fact sheet §1.7)
+inline constexpr UartPorts uart2_ports{ sfr::U2MODE,
+                                        24,
+                                        25 }; // IRQs (vectors 32, 33; fact sheet §1.7)
 
 class Uart : public Peripheral
 {

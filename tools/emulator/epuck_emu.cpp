@@ -26,6 +26,8 @@
 #include "arena_feed.hpp"
 #include "arena_file.hpp"
 #include "arena_simulation.hpp"
+#include "dspic30_arena.hpp"
+#include "tools/dspic30_sim/intel_hex.hpp"
 #include "control_port.hpp"
 #include "network.hpp"
 #include "network_status.hpp"
@@ -126,12 +128,18 @@ struct Options {
     uint16_t control_port = 0; // 0: none
     uint16_t arena_feed = 0;   // port of the arena feed; 0: none
     unsigned threads = 0;      // 0: as many as pay off (firmware_threads)
+    std::string dspic30_image; // arena mode: the image every robot's chip runs
 };
 
 // Robots a thread should have at least for another thread to pay off: each
 // simulated millisecond the threads meet, which costs about what a few
 // robots' millisecond of firmware does.
 constexpr size_t robots_per_thread = 16;
+
+// Polls of one robot between two passes of the network without the arena,
+// at most: enough for the frames one pass brings, few enough that a robot
+// whose program never rests does not keep the network waiting.
+constexpr int polls_per_pass = 32;
 
 // The threads the arena's firmware runs on: as asked, else one per core
 // while each gets enough robots.
@@ -284,6 +292,17 @@ Options parse_options(int argc, char **argv)
                   "aseba-ide --arena (docs/ide-protocol.md)")
       ->check(CLI::Range(1, 65535).description(""))
       ->type_name("P");
+    app
+      .add_option("--dspic30",
+                  options.dspic30_image,
+                  "arena mode: run every robot on a simulated dsPIC30F6014A from the\n"
+                  "Intel HEX image FILE (build/dspic30/epuck-aseba-factory.hex: the\n"
+                  "bootloader and the application) instead of on the host board: the\n"
+                  "real machine code, its sensors, motors and camera fed by the same\n"
+                  "world (docs/dspic30-sim.md); node ids from the selector, robot i's\n"
+                  "turned to i-1 (ids 1..8); no --load, --memory, --robot-ports,\n"
+                  "--control nor --arena-feed with it")
+      ->type_name("FILE");
     bool headless = false; // there is no window to hide
     app.add_flag("--headless", headless, "accepted for compatibility: there is no window anyway");
     aseba::command_line::parse_or_exit(app, argc, argv);
@@ -479,6 +498,67 @@ std::vector<aseba::arena::FeedRobot> feed_robots(aseba::arena::ArenaSimulation &
     return robots;
 }
 
+// The arena with every robot on a simulated dsPIC (dspic30_arena.hpp);
+// returns the exit status.
+int run_dspic30_arena(const Options &options, const aseba::arena::Arena &arena)
+{
+    if (!options.load.empty() || !options.memory_folder.empty() || options.robot_ports != 0 ||
+        options.control_port != 0 || options.arena_feed != 0)
+        fail("--dspic30 takes no --load, --memory, --robot-ports, --control nor "
+             "--arena-feed");
+    std::unique_ptr<aseba::arena::Dspic30Arena> simulation_owner;
+    try {
+        simulation_owner = std::make_unique<aseba::arena::Dspic30Arena>(
+          arena, options.seed, aseba::dspic30::read_intel_hex_file(options.dspic30_image));
+    } catch (const std::exception &error) {
+        fail(error.what());
+    }
+    aseba::arena::Dspic30Arena &simulation = *simulation_owner;
+    aseba::host::Network &network = simulation.network();
+    reserve_descriptors(options, simulation.robot_count());
+    open_port([&] { network.listen(options.port, options.listen_address); });
+    std::printf("epuck-emu: arena %s, %zu robot%s on simulated dsPIC30F6014A chips (%s) on "
+                "tcp:port=%u%s, seed %u, %s speed\n",
+                options.arena.c_str(),
+                simulation.robot_count(),
+                simulation.robot_count() == 1 ? "" : "s",
+                options.dspic30_image.c_str(),
+                unsigned(options.port),
+                listen_note(options).c_str(),
+                unsigned(options.seed),
+                options.realtime ? "real-time" : "maximum");
+    flush_output();
+    using clock = std::chrono::steady_clock;
+    const auto start = clock::now();
+    auto wall_seconds = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
+    try {
+        while (!stop_requested) {
+            if (options.duration_seconds > 0 && simulation.seconds() >= options.duration_seconds)
+                break;
+            simulation.step();
+            double wall = wall_seconds();
+            while (options.realtime && simulation.seconds() > wall && !stop_requested) {
+                constexpr double milliseconds_per_second = 1000;
+                network.service(
+                  int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
+                wall = wall_seconds();
+            }
+        }
+    } catch (const std::exception &error) {
+        std::fprintf(stderr, "epuck-emu: %s\n", error.what());
+        return aseba::command_line::EXIT_FAILED;
+    }
+    double wall = wall_seconds();
+    std::printf("epuck-emu: stopped at %.1f simulated s after %.1f s (%.2fx real time, %.2f s "
+                "of wall clock per simulated second and robot), %llu frames on the network\n",
+                simulation.seconds(),
+                wall,
+                simulation.seconds() / std::max(wall, 1e-9),
+                wall / std::max(simulation.seconds() * double(simulation.robot_count()), 1e-9),
+                static_cast<unsigned long long>(network.frames_moved()));
+    return exit_status(false);
+}
+
 // Arena mode: the robots in an Enki world, in simulated time (see
 // tools/emulator/arena_simulation.hpp); returns the exit status.
 int run_arena(const Options &options,
@@ -499,6 +579,8 @@ int run_arena(const Options &options,
     } catch (const std::exception &error) {
         fail(error.what());
     }
+    if (!options.dspic30_image.empty())
+        return run_dspic30_arena(options, arena);
     std::unique_ptr<aseba::arena::ArenaSimulation> simulation_owner;
     try {
         simulation_owner = std::make_unique<aseba::arena::ArenaSimulation>(
@@ -699,10 +781,16 @@ int main(int argc, char **argv)
             break;
         uint32_t now_ms =
           uint32_t(std::chrono::duration_cast<std::chrono::milliseconds>(elapsed).count());
+        // Each robot works through what it has (a frame per poll) before the
+        // network's next pass, as in the arena: a pass per frame would cost
+        // each event a whole round of the sockets.
         bool busy = false;
         for (auto &robot : robots) {
             host_board_set_time(&robot->board, now_ms);
-            busy |= host_robot_poll(robot.get());
+            bool robot_busy = true;
+            for (int poll = 0; robot_busy && poll < polls_per_pass; poll++)
+                robot_busy = host_robot_poll(robot.get());
+            busy |= robot_busy;
         }
         memories.sync();
         // Wait for the network only when no robot has work left; the robots'

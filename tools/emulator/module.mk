@@ -20,7 +20,14 @@ aseba_arena_SOURCES := tools/emulator/arena_file.cpp tools/emulator/enki_world.c
 # epuck-emu: the e-puck firmware image running on a PC.
 PROGRAMS += epuck-emu
 epuck-emu_SOURCES := tools/emulator/epuck_emu.cpp
-epuck-emu_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_firmware \
+epuck-emu_LIBS := aseba_dspic30_robot dspic30_sim aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_firmware \
                   aseba_epuck aseba_store aseba_bootloader aseba_host_board aseba_compiler aseba_node \
                   aseba_vm aseba_natives
 epuck-emu_LDLIBS := -lenki -pthread
+
+# An e-puck of the arena on the simulated dsPIC30F6014A (tools/dspic30_sim):
+# the board around the chip fed by the robot's world, and the camera's
+# pixel port on the chip's clock.
+LIBRARIES += aseba_dspic30_robot
+aseba_dspic30_robot_SOURCES := tools/emulator/dspic30_robot.cpp tools/emulator/dspic30_pixel_port.cpp \
+                               tools/emulator/dspic30_arena.cpp

@@ -31,8 +31,15 @@ constexpr size_t read_chunk = 1024;
 // Socket events handled in one service() call after the first, so that
 // a client that never stops sending cannot keep service() from returning.
 constexpr int max_events_per_service = 256;
+// Passes of service() at most between two looks at the sockets' events
+// while clients that were read again had sent more (accepts and writes
+// waiting for room are handled at those looks).
+constexpr int passes_between_events = 16;
 // The robots' frames, in the queue of each board, as one source.
 constexpr uint64_t robots_source = 0;
+// Frames kept for reuse once delivered, at most: a frame's buffer and its
+// count of owners are then not allocated again for each message.
+constexpr size_t spare_frames_kept = 256;
 
 uint16_t read_u16(const uint8_t *bytes)
 {
@@ -56,7 +63,7 @@ bool FrameReader::feed(const uint8_t *bytes, size_t count)
     return !broken_;
 }
 
-std::optional<Frame> FrameReader::next()
+std::optional<FrameView> FrameReader::next()
 {
     size_t available = pending_.size() - consumed_;
     if (broken_ || available < NODE_HEADER_SIZE)
@@ -65,12 +72,11 @@ std::optional<Frame> FrameReader::next()
     size_t length = NODE_HEADER_SIZE + read_u16(start);
     if (available < length)
         return std::nullopt;
-    Frame frame(start, start + length);
     consumed_ += length;
     if (pending_.size() - consumed_ >= 2 &&
         read_u16(pending_.data() + consumed_) > NODE_MAX_PAYLOAD)
         broken_ = true;
-    return frame;
+    return FrameView{ start, length };
 }
 
 namespace
@@ -90,7 +96,7 @@ struct Board;
 
 // Where a board's frames go.
 struct Bus {
-    virtual void broadcast_from_board(Board &from, const Frame &frame) = 0;
+    virtual void broadcast_from_board(Board &from, FrameView frame) = 0;
 
   protected:
     ~Bus() = default;
@@ -119,7 +125,7 @@ void board_output(void *context, const uint8_t *bytes, uint16_t count)
 
 struct Listener;
 
-struct Client {
+struct Client : std::enable_shared_from_this<Client> {
     explicit Client(asio::io_context &io)
       : socket(io)
     {
@@ -131,11 +137,11 @@ struct Client {
     connections::Clock::time_point heard; // when it last sent something
     FrameReader reader;
     std::array<uint8_t, read_chunk> input{};
-    bool reading = false;
-    size_t full_queues = 0; // boards where this client has its share waiting
-    std::string unsent;     // for the client, after what is being sent
-    std::string sending;
-    bool writing = false;
+    bool reading = false;    // a wait for bytes, or a read, is pending
+    bool read_again = false; // sent at the last read: read at the next service()
+    size_t full_queues = 0;  // boards where this client has its share waiting
+    std::string unsent;      // for the client, not yet taken by its socket
+    bool writing = false;    // waiting for the socket to take more
     bool closed = false;
 };
 
@@ -153,7 +159,9 @@ struct Listener {
 } // namespace
 
 struct Network::State final : Bus {
-    asio::io_context io;
+    // One thread runs it and no other touches it: no locks, not even
+    // around each socket (asio's concurrency hint).
+    asio::io_context io{ ASIO_CONCURRENCY_HINT_UNSAFE };
     // service() waits for its time even when no socket is open.
     asio::executor_work_guard<asio::io_context::executor_type> work = asio::make_work_guard(io);
     std::vector<std::unique_ptr<Listener>> listeners;
@@ -164,6 +172,9 @@ struct Network::State final : Bus {
     uint64_t frames_dropped = 0;
     bool relay_robot_events = true;
     std::function<void(const Frame &)> observer;
+    Frame observed; // a robot's frame for the observer, when no board takes a copy
+    std::vector<SharedFrame> spare_frames; // delivered, for make_frame to reuse
+    int passes_without_events = 0;         // service() calls since the last look
 
     ~State()
     {
@@ -244,6 +255,8 @@ struct Network::State final : Bus {
         std::error_code ignored;
         // Hosts wait for each answer: do not let Nagle hold small frames.
         socket.set_option(asio::ip::tcp::no_delay(true), ignored);
+        // read_from reads what has come without waiting.
+        socket.non_blocking(true, ignored);
         auto client = std::make_shared<Client>(io);
         client->socket = std::move(socket);
         client->number = next_client_number++;
@@ -254,50 +267,122 @@ struct Network::State final : Bus {
         start_read(client);
     }
 
+    // Reads the client again (a new one, or one whose queues had filled):
+    // bytes may have come meanwhile, so read before waiting.
     void start_read(const std::shared_ptr<Client> &client)
     {
         if (client->closed || client->reading || client->full_queues > 0)
             return;
         client->reading = true;
-        client->socket.async_read_some(
-          asio::buffer(client->input), [this, client](std::error_code error, size_t count) {
-              client->reading = false;
-              if (client->closed)
-                  return;
-              if (error) {
-                  close(*client, nullptr); // closed by the peer, or failed
-                  return;
-              }
-              client->heard = connections::Clock::now();
-              if (!client->reader.feed(client->input.data(), count)) {
-                  close(*client, "it sent a frame longer than the protocol allows");
-                  return;
-              }
-              while (auto frame = client->reader.next())
-                  broadcast_from_client(*client, *frame);
-              start_read(client);
-          });
+        asio::post(io, [this, client] {
+            client->reading = false;
+            read_from(client);
+        });
     }
 
-    void start_write(const std::shared_ptr<Client> &client)
+    // Waits until the client's socket has bytes, then reads them. The wait
+    // sees every arrival after it starts (and bytes that came before), so
+    // it starts only once a read found the socket empty.
+    void wait_for_bytes(const std::shared_ptr<Client> &client)
+    {
+        client->reading = true;
+        client->socket.async_wait(asio::ip::tcp::socket::wait_read,
+                                  [this, client](std::error_code error) {
+                                      client->reading = false;
+                                      if (client->closed)
+                                          return;
+                                      if (error) {
+                                          close(*client, nullptr);
+                                          return;
+                                      }
+                                      read_from(client);
+                                  });
+    }
+
+    // One read of what the client sent, passed on frame by frame; returns
+    // whether bytes came. A read that fills the buffer may have left more:
+    // the next one is posted, so that other sockets get their turn in
+    // between. After a shorter one the client is read again at the next
+    // service(), before any wait: a client that streams has sent more by
+    // then, and that read saves a wait and a system call to start it.
+    bool read_from(const std::shared_ptr<Client> &client)
+    {
+        if (client->closed || client->reading || client->full_queues > 0)
+            return false;
+        std::error_code error;
+        size_t count = client->socket.read_some(asio::buffer(client->input), error);
+        if (error == asio::error::would_block || error == asio::error::try_again) {
+            wait_for_bytes(client);
+            return false;
+        }
+        if (error) {
+            close(*client, nullptr); // closed by the peer, or failed
+            return false;
+        }
+        client->heard = connections::Clock::now();
+        if (!client->reader.feed(client->input.data(), count)) {
+            close(*client, "it sent a frame longer than the protocol allows");
+            return true;
+        }
+        while (auto frame = client->reader.next())
+            broadcast_from_client(*client, *frame);
+        if (client->closed || client->full_queues > 0)
+            return true; // deliver_to_boards reads it again once there is room
+        if (count == client->input.size())
+            start_read(client);
+        else
+            client->read_again = true;
+        return true;
+    }
+
+    // Reads the clients marked by read_from; returns whether any had sent
+    // more.
+    bool read_clients_again()
+    {
+        bool heard = false;
+        for (const auto &client : clients) {
+            if (!client->read_again)
+                continue;
+            client->read_again = false;
+            heard |= read_from(client);
+        }
+        return heard;
+    }
+
+    // Sends what waits for the client, as much as its socket takes now, in
+    // one system call for every frame gathered since the last time; the
+    // rest once the socket can take more.
+    void flush(const std::shared_ptr<Client> &client)
     {
         if (client->closed || client->writing || client->unsent.empty())
             return;
+        std::error_code error;
+        size_t sent = client->socket.write_some(asio::buffer(client->unsent), error);
+        if (error && error != asio::error::would_block && error != asio::error::try_again) {
+            close(*client, nullptr);
+            return;
+        }
+        client->unsent.erase(0, sent);
+        if (client->unsent.empty())
+            return;
         client->writing = true;
-        client->sending.swap(client->unsent);
-        asio::async_write(client->socket,
-                          asio::buffer(client->sending),
-                          [this, client](std::error_code error, size_t) {
-                              client->writing = false;
-                              client->sending.clear();
-                              if (client->closed)
-                                  return;
-                              if (error) {
-                                  close(*client, nullptr);
-                                  return;
-                              }
-                              start_write(client);
-                          });
+        client->socket.async_wait(asio::ip::tcp::socket::wait_write,
+                                  [this, client](std::error_code wait_error) {
+                                      client->writing = false;
+                                      if (client->closed)
+                                          return;
+                                      if (wait_error) {
+                                          close(*client, nullptr);
+                                          return;
+                                      }
+                                      flush(client);
+                                  });
+    }
+
+    void flush_clients()
+    {
+        for (auto &client : clients)
+            flush(client);
     }
 
     // Closes the client's socket; it leaves `clients` at the next sweep.
@@ -325,12 +410,33 @@ struct Network::State final : Bus {
                 accept(*listener);
     }
 
-    std::shared_ptr<Client> client_numbered(uint64_t number) const
+    Client *client_numbered(uint64_t number) const
     {
         for (const auto &client : clients)
             if (client->number == number)
-                return client;
+                return client.get();
         return nullptr;
+    }
+
+    // A frame holding `frame`'s bytes, from the spares when one is left.
+    SharedFrame make_frame(FrameView frame)
+    {
+        if (spare_frames.empty())
+            return std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
+        std::shared_ptr<const Frame> reused = std::move(spare_frames.back());
+        spare_frames.pop_back();
+        // Made as a mutable Frame by make_shared above: writable again now
+        // that nothing else holds it.
+        std::const_pointer_cast<Frame>(reused)->assign(frame.bytes, frame.bytes + frame.size);
+        return reused;
+    }
+
+    // Keeps a delivered frame for reuse if its last owner is `frame`.
+    void recycle(SharedFrame &frame)
+    {
+        if (frame.use_count() == 1 && spare_frames.size() < spare_frames_kept)
+            spare_frames.push_back(std::move(frame));
+        frame.reset();
     }
 
     void enqueue(Board &board, uint64_t source, const SharedFrame &frame)
@@ -359,39 +465,40 @@ struct Network::State final : Bus {
             observer(frame);
     }
 
-    void send_to_clients(const Board *from_board, const Client *from_client, const Frame &frame)
+    void send_to_clients(const Board *from_board, const Client *from_client, FrameView frame)
     {
         // Direct clients hear their own robot only.
         for (auto &client : clients) {
             if (client->closed || client.get() == from_client ||
                 (client->robot != nullptr && client->robot != from_board))
                 continue;
-            client->unsent.append(frame.begin(), frame.end());
-            if (client->unsent.size() + client->sending.size() > CLIENT_UNREAD_LIMIT) {
+            client->unsent.append(reinterpret_cast<const char *>(frame.bytes), frame.size);
+            if (client->unsent.size() > CLIENT_UNREAD_LIMIT)
                 close(*client, "it stopped reading");
-                continue;
-            }
-            start_write(client);
         }
     }
 
-    void broadcast_from_board(Board &from, const Frame &frame) override
+    void broadcast_from_board(Board &from, FrameView frame) override
     {
-        count(frame);
-        const bool user_event = read_u16(frame.data() + type_offset) < NODE_FIRST_SYSTEM_TYPE;
-        if (!user_event || relay_robot_events) {
-            auto shared = std::make_shared<const Frame>(frame);
+        const bool user_event = read_u16(frame.bytes + type_offset) < NODE_FIRST_SYSTEM_TYPE;
+        if ((!user_event || relay_robot_events) && boards.size() > 1) {
+            SharedFrame shared = make_frame(frame);
+            count(*shared);
             for (auto &board : boards)
                 if (board.get() != &from)
                     enqueue(*board, robots_source, shared);
+        } else {
+            // No other board keeps it: the observer sees a reused buffer.
+            observed.assign(frame.bytes, frame.bytes + frame.size);
+            count(observed);
         }
         send_to_clients(&from, nullptr, frame);
     }
 
-    void broadcast_from_client(const Client &from, const Frame &frame)
+    void broadcast_from_client(const Client &from, FrameView frame)
     {
-        count(frame);
-        auto shared = std::make_shared<const Frame>(frame);
+        SharedFrame shared = make_frame(frame);
+        count(*shared);
         if (from.robot != nullptr) {
             // A client linked directly to one robot talks to it alone.
             enqueue(*from.robot, from.number, shared);
@@ -429,19 +536,20 @@ struct Network::State final : Bus {
                 if (!host_board_link_deliver(board->board, frame.data(), uint16_t(frame.size())))
                     break;
                 queue.bytes -= frame.size();
+                recycle(queue.frames.front());
                 queue.frames.pop_front();
                 board->waiting_frames--;
                 board->last_served = source->first;
                 if (source->first == robots_source)
                     continue;
-                std::shared_ptr<Client> client = client_numbered(source->first);
+                Client *client = client_numbered(source->first);
                 bool now_room = queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
                                 queue.bytes < CLIENT_BYTES_PER_ROBOT;
                 if (queue.full && now_room) {
                     queue.full = false;
                     if (client) {
                         client->full_queues--;
-                        start_read(client);
+                        start_read(client->shared_from_this());
                     }
                 }
                 if (!client && queue.frames.empty())
@@ -498,18 +606,26 @@ void Network::attach(hal_board *board)
 void Network::service(int timeout_ms)
 {
     State &state = *state_;
+    // What the boards said since the last call leaves before any wait.
+    state.flush_clients();
     state.deliver_to_boards();
-    if (state.io.stopped())
-        state.io.restart();
-    // Waits for the first event if asked to, then handles what is ready.
-    if (timeout_ms > 0)
-        state.io.run_one_for(std::chrono::milliseconds(timeout_ms));
-    for (int i = 0; i < max_events_per_service && state.io.poll_one() > 0; i++) {
+    bool heard = state.read_clients_again();
+    if (!heard || ++state.passes_without_events >= passes_between_events) {
+        state.passes_without_events = 0;
+        if (state.io.stopped())
+            state.io.restart();
+        // Waits for the first event if asked to (unless a client has just
+        // been heard), then handles what is ready.
+        if (timeout_ms > 0 && !heard)
+            state.io.run_one_for(std::chrono::milliseconds(timeout_ms));
+        for (int i = 0; i < max_events_per_service && state.io.poll_one() > 0; i++) {
+        }
     }
     state.sweep();
     // What arrived while waiting reaches the boards before this returns, so
     // that robots answer at their next poll rather than after another wait.
     state.deliver_to_boards();
+    state.flush_clients();
 }
 
 size_t Network::client_count() const
@@ -532,7 +648,7 @@ size_t Network::held_bytes() const
         for (const auto &[source, queue] : board->waiting)
             bytes += queue.bytes;
     for (const auto &client : state_->clients)
-        bytes += client->unsent.size() + client->sending.size();
+        bytes += client->unsent.size();
     return bytes;
 }
 

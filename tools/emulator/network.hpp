@@ -55,6 +55,12 @@ inline constexpr size_t ROBOT_FRAMES_PER_ROBOT = 4096; // from the robots, for o
 
 using Frame = std::vector<uint8_t>;
 
+// A frame's bytes where they lie, borrowed: valid until its owner changes.
+struct FrameView {
+    const uint8_t *bytes = nullptr;
+    size_t size = 0;
+};
+
 // Cuts a byte stream into Aseba frames.
 class FrameReader
 {
@@ -62,8 +68,8 @@ class FrameReader
     // Takes bytes; false once a header announced a payload above the
     // protocol's maximum: the stream can no longer be followed.
     bool feed(const uint8_t *bytes, size_t count);
-    // The next complete frame, if any.
-    std::optional<Frame> next();
+    // The next complete frame, if any, in the reader's buffer until the next feed.
+    std::optional<FrameView> next();
 
   private:
     std::vector<uint8_t> pending_;

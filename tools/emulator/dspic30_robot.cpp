@@ -1,0 +1,201 @@
+// The e-puck's board around the simulated chip (see dspic30_robot.hpp).
+
+#include "dspic30_robot.hpp"
+
+#include <array>
+
+namespace aseba::arena
+{
+namespace
+{
+
+struct PinPlace {
+    char port;
+    uint8_t bit;
+};
+
+// Where each pin of the e-puck is on the chip: boards/epuck_dspic30/dspic30_gpio.c's
+// table, by port letter.
+constexpr std::array<PinPlace, EPUCK_PIN_COUNT> pin_places = [] {
+    std::array<PinPlace, EPUCK_PIN_COUNT> places{};
+    places[EPUCK_PIN_LED_0] = { 'A', 6 };
+    places[EPUCK_PIN_LED_1] = { 'A', 7 };
+    places[EPUCK_PIN_LED_2] = { 'A', 9 };
+    places[EPUCK_PIN_LED_3] = { 'A', 12 };
+    places[EPUCK_PIN_LED_4] = { 'A', 10 };
+    places[EPUCK_PIN_LED_5] = { 'A', 13 };
+    places[EPUCK_PIN_LED_6] = { 'A', 14 };
+    places[EPUCK_PIN_LED_7] = { 'A', 15 };
+    places[EPUCK_PIN_FRONT_LED] = { 'C', 1 };
+    places[EPUCK_PIN_BODY_LED] = { 'C', 2 };
+    places[EPUCK_PIN_MOTOR_LEFT_A] = { 'D', 0 };
+    places[EPUCK_PIN_MOTOR_LEFT_B] = { 'D', 1 };
+    places[EPUCK_PIN_MOTOR_LEFT_C] = { 'D', 2 };
+    places[EPUCK_PIN_MOTOR_LEFT_D] = { 'D', 3 };
+    places[EPUCK_PIN_MOTOR_RIGHT_A] = { 'D', 4 };
+    places[EPUCK_PIN_MOTOR_RIGHT_B] = { 'D', 5 };
+    places[EPUCK_PIN_MOTOR_RIGHT_C] = { 'D', 6 };
+    places[EPUCK_PIN_MOTOR_RIGHT_D] = { 'D', 7 };
+    places[EPUCK_PIN_IR_PULSE_0_4] = { 'F', 7 };
+    places[EPUCK_PIN_IR_PULSE_1_5] = { 'F', 8 };
+    places[EPUCK_PIN_IR_PULSE_2_6] = { 'G', 0 };
+    places[EPUCK_PIN_IR_PULSE_3_7] = { 'G', 1 };
+    places[EPUCK_PIN_CAMERA_RESET] = { 'C', 13 };
+    places[EPUCK_PIN_AUDIO_ON] = { 'F', 0 };
+    places[EPUCK_PIN_SELECTOR_0] = { 'G', 6 };
+    places[EPUCK_PIN_SELECTOR_1] = { 'G', 7 };
+    places[EPUCK_PIN_SELECTOR_2] = { 'G', 8 };
+    places[EPUCK_PIN_SELECTOR_3] = { 'G', 9 };
+    places[EPUCK_PIN_BATTERY_LOW] = { 'F', 1 };
+    places[EPUCK_PIN_REMOTE] = { 'F', 6 };
+    places[EPUCK_PIN_CAMERA_HREF] = { 'C', 3 };
+    places[EPUCK_PIN_CAMERA_VSYNC] = { 'C', 4 };
+    places[EPUCK_PIN_CAMERA_PCLK] = { 'C', 14 };
+    return places;
+}();
+
+// The camera's data lines: the upper byte of port D (§3.5).
+constexpr unsigned camera_data_shift = 8;
+
+uint16_t bit_of(epuck_pin pin)
+{
+    return uint16_t(1u << pin_places[pin].bit);
+}
+
+} // namespace
+
+// The camera on the I2C bus: register writes and reads as the firmware
+// makes them (a register address after a start for writing, then data
+// bytes, or a repeated start for reading), answered by the world's
+// i2c_write and i2c_read one register at a time.
+class Dspic30Robot::CameraBus : public dspic30::I2cDevice
+{
+  public:
+    explicit CameraBus(const host_world &world)
+      : world_(world)
+    {
+    }
+
+    void start(bool reading) override
+    {
+        reading_ = reading;
+        have_register_ = reading_ ? have_register_ : false;
+    }
+
+    bool receive(uint8_t byte) override
+    {
+        if (!have_register_) {
+            register_ = byte;
+            have_register_ = true;
+            return true;
+        }
+        return world_.i2c_write(world_.context, EPUCK_I2C_CAMERA_ADDRESS, register_++, &byte, 1);
+    }
+
+    uint8_t send() override
+    {
+        uint8_t byte = 0;
+        if (!world_.i2c_read(world_.context, EPUCK_I2C_CAMERA_ADDRESS, register_++, &byte, 1))
+            return 0xFF; // nothing drives the bus: it reads high
+        return byte;
+    }
+
+  private:
+    const host_world &world_;
+    bool reading_ = false;
+    bool have_register_ = false;
+    uint8_t register_ = 0;
+};
+
+Dspic30Robot::Dspic30Robot(const std::map<uint32_t, uint32_t> &image, const host_world &world)
+  : world_(world)
+  , pixel_port_(world)
+  , camera_bus_(std::make_unique<CameraBus>(world))
+{
+    chip_ =
+      std::make_unique<dspic30::Simulator>([this](uint8_t byte) { from_chip_.push_back(byte); },
+                                           [this]() {
+                                               if (to_chip_.empty())
+                                                   return -1;
+                                               int byte = to_chip_.front();
+                                               to_chip_.pop_front();
+                                               return byte;
+                                           });
+    chip_->load(image);
+    chip_->gpio().set_input_sampler([this](char letter) { sample_inputs(letter); });
+    chip_->gpio().set_pins_changed([this](char letter, uint16_t before, uint16_t after) {
+        pins_changed(letter, before, after);
+    });
+    chip_->adc().set_input_source([this](int channel, uint64_t cycle) {
+        return world_.adc_read(world_.context, uint8_t(channel), cycle);
+    });
+    chip_->i2c().connect(EPUCK_I2C_CAMERA_ADDRESS >> 1, *camera_bus_);
+    for (char letter : { 'A', 'B', 'C', 'D', 'F', 'G' })
+        sample_inputs(letter);
+}
+
+Dspic30Robot::~Dspic30Robot() = default;
+
+void Dspic30Robot::sample_inputs(char letter)
+{
+    const uint64_t cycle = chip_->cpu().cycles();
+    uint16_t levels = 0;
+    for (int pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++) {
+        if (pin_places[pin].port != letter || pin == EPUCK_PIN_CAMERA_HREF ||
+            pin == EPUCK_PIN_CAMERA_VSYNC || pin == EPUCK_PIN_CAMERA_PCLK)
+            continue;
+        if (world_.pin_read(world_.context, epuck_pin(pin), cycle))
+            levels |= bit_of(epuck_pin(pin));
+    }
+    if (letter == 'C' || letter == 'D') {
+        const PixelPortLevels camera = pixel_port_.at(cycle);
+        if (letter == 'C') {
+            levels |= camera.href ? bit_of(EPUCK_PIN_CAMERA_HREF) : 0;
+            levels |= camera.vsync ? bit_of(EPUCK_PIN_CAMERA_VSYNC) : 0;
+            levels |= camera.pclk ? bit_of(EPUCK_PIN_CAMERA_PCLK) : 0;
+        } else {
+            levels |= uint16_t(camera.data << camera_data_shift);
+        }
+    }
+    chip_->gpio().set_input_levels(letter, levels);
+}
+
+void Dspic30Robot::pins_changed(char letter, uint16_t before, uint16_t after)
+{
+    const uint64_t cycle = chip_->cpu().cycles();
+    for (int pin = 0; pin < EPUCK_PIN_FIRST_INPUT; pin++) {
+        if (pin_places[pin].port != letter || !((before ^ after) & bit_of(epuck_pin(pin))))
+            continue;
+        world_.pin_written(
+          world_.context, epuck_pin(pin), (after & bit_of(epuck_pin(pin))) != 0, cycle);
+    }
+}
+
+dspic30::Outcome Dspic30Robot::run_until(uint64_t cycle)
+{
+    if (chip_->cpu().cycles() >= cycle)
+        return dspic30::Outcome::cycle_limit;
+    dspic30::RunLimits limits;
+    limits.cycles = cycle;
+    return chip_->run(limits).outcome;
+}
+
+void Dspic30Robot::receive(const uint8_t *bytes, size_t count)
+{
+    to_chip_.insert(to_chip_.end(), bytes, bytes + count);
+}
+
+std::vector<uint8_t> Dspic30Robot::take_output()
+{
+    std::vector<uint8_t> bytes;
+    bytes.swap(from_chip_);
+    return bytes;
+}
+
+bool Dspic30Robot::output(epuck_pin pin) const
+{
+    const PinPlace &place = pin_places.at(pin);
+    return (chip_->gpio().pins(place.port) >> place.bit) & 1u;
+}
+
+} // namespace aseba::arena
