@@ -195,6 +195,15 @@ epuck_camera_step epuck_board_camera_step(hal_board *board)
     // The world's camera answers at once: the row is read at the first step.
     if (board->camera_bytes == 0)
         return EPUCK_CAMERA_FAILED;
+    if (board->world->camera_every_second_pixel) {
+        board->world->camera_every_second_pixel(board->world->context,
+                                                board->camera_row,
+                                                board->camera_pixels,
+                                                board->cycles,
+                                                board->camera_bytes);
+        board->camera_bytes = 0;
+        return EPUCK_CAMERA_DONE;
+    }
     // Every second pixel: its bytes are the row's 2 × EPUCK_CAMERA_PIXEL_BYTES × p onwards.
     for (i = 0; i < board->camera_pixels * EPUCK_CAMERA_PIXEL_BYTES; i++) {
         uint16_t pixel = (uint16_t)(i / EPUCK_CAMERA_PIXEL_BYTES);

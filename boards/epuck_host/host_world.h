@@ -51,6 +51,15 @@ typedef struct host_world {
     // so that the board hands a run of scans to the firmware at once
     // (epuck_board_adc_scan_runs). NULL: never.
     bool (*adc_channels_steady)(void *context, uint16_t channel_mask);
+    // The bytes of every second pixel of row `row` from the first, `pixels`
+    // of them, into `bytes`: what camera_byte gives for each, in one call
+    // for a whole row, so that the world works out only the pixels read.
+    // NULL: the board calls camera_byte for each byte.
+    void (*camera_every_second_pixel)(void *context,
+                                      uint16_t row,
+                                      uint16_t pixels,
+                                      uint64_t cycle,
+                                      uint8_t *bytes);
 } host_world;
 
 #define HOST_NO_INPUT_CHANGE UINT64_MAX

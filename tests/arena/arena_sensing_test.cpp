@@ -195,6 +195,48 @@ TEST(ArenaSensing, CameraSeesTheAreaAheadNotTheOneBehind)
     EXPECT_EQ(mean(variables(simulation).cam_blue, 60), 18);
 }
 
+// The board reads a camera row at once (host_world's
+// camera_every_second_pixel), the world working out the pixels read only:
+// the same bytes as read one by one, for crowded robots, obstacles, rows
+// past the window and pixels past the row, tilted or level.
+TEST(ArenaSensing, CameraRowReadAtOnceIsTheRowReadByteByByte)
+{
+    for (double tilt : { 20.0, 0.0 }) {
+        SCOPED_TRACE(tilt);
+        Arena arena = default_arena(40);
+        arena.camera_tilt_degrees = tilt;
+        draw_start_positions(arena, 3);
+        Obstacle box;
+        box.shape = Obstacle::Shape::box;
+        box.length = 30;
+        box.width = 5;
+        box.x = 100;
+        box.y = 40;
+        box.heading_degrees = 30;
+        box.color = { 0, 0, 1 };
+        arena.obstacles = { box };
+        EnkiWorld world(arena, 1);
+        world.step();
+        std::map<uint8_t, unsigned> values;
+        for (size_t robot = 0; robot < world.robot_count(); robot++) {
+            const host_world &table = *world.world_of(robot);
+            for (uint16_t row = 0; row < 122; row++) {
+                constexpr uint16_t pixels = 64; // 4 past the row's 60
+                uint8_t at_once[2 * pixels];
+                table.camera_every_second_pixel(table.context, row, pixels, 0, at_once);
+                for (uint16_t i = 0; i < 2 * pixels; i++) {
+                    uint16_t index = uint16_t(4 * (i / 2) + i % 2);
+                    ASSERT_EQ(at_once[i], table.camera_byte(table.context, row, index, 0))
+                      << "robot " << robot << " row " << row << " byte " << i;
+                    values[at_once[i]]++;
+                }
+            }
+        }
+        // Floors, areas, walls, robots and the box: many colours.
+        EXPECT_GT(values.size(), 5u);
+    }
+}
+
 TEST(ArenaSensing, CollisionGivesAnAccelerometerShock)
 {
     ArenaSimulation simulation(empty_arena(), 1, {});

@@ -3,7 +3,8 @@
 TESTS += arena_test
 arena_test_SOURCES := tests/arena/arena_file_test.cpp tests/arena/arena_sensing_test.cpp \
                       tests/arena/sound_test.cpp tests/arena/inputs_test.cpp \
-                      tests/arena/control_test.cpp tests/arena/partitioned_world_test.cpp
+                      tests/arena/control_test.cpp tests/arena/partitioned_world_test.cpp \
+                      tests/arena/ir_sensor_test.cpp
 arena_test_LIBS := aseba_arena aseba_emulator_network aseba_host_robot aseba_flash aseba_firmware aseba_epuck aseba_store \
                    aseba_bootloader aseba_host_board aseba_compiler aseba_node aseba_vm aseba_natives
 arena_test_LDLIBS := -lenki -lgtest -lgtest_main -pthread

@@ -280,28 +280,53 @@ unsigned rounded_level(double level)
     return level - whole >= 0.5 ? whole + 1 : whole;
 }
 
+// A pixel's RGB565 bytes, high byte first (hardware §3.5), into `bytes`.
+void rgb565_bytes(const Color &color, uint8_t *bytes)
+{
+    unsigned red = rounded_level(color.red * rgb565_red_levels);
+    unsigned green = rounded_level(color.green * rgb565_green_levels);
+    unsigned blue = rounded_level(color.blue * rgb565_blue_levels);
+    uint16_t word = uint16_t(red << 11 | green << 5 | blue);
+    bytes[0] = uint8_t(word >> 8);
+    bytes[1] = uint8_t(word & 0xFF);
+}
+
 uint8_t world_camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 {
     RobotState &state = state_of(context);
     if (index >= camera_row_bytes)
         return 0;
     if (state.rendered_step != state.world->steps() || state.rendered_row != row) {
-        // RGB565, high byte first (hardware §3.5).
         Color pixels[camera_row_pixels];
         state.world->camera_row(state.index, row, pixels);
-        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
-            const Color &color = pixels[pixel];
-            unsigned red = rounded_level(color.red * rgb565_red_levels);
-            unsigned green = rounded_level(color.green * rgb565_green_levels);
-            unsigned blue = rounded_level(color.blue * rgb565_blue_levels);
-            uint16_t word = uint16_t(red << 11 | green << 5 | blue);
-            state.row_bytes[2 * pixel] = uint8_t(word >> 8);
-            state.row_bytes[2 * pixel + 1] = uint8_t(word & 0xFF);
-        }
+        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++)
+            rgb565_bytes(pixels[pixel], &state.row_bytes[2 * pixel]);
         state.rendered_step = state.world->steps();
         state.rendered_row = row;
     }
     return state.row_bytes[index];
+}
+
+void world_camera_every_second_pixel(void *context,
+                                     uint16_t row,
+                                     uint16_t pixels,
+                                     uint64_t,
+                                     uint8_t *bytes)
+{
+    // The bytes world_camera_byte gives, of the pixels read only: the row's
+    // pixels are worked out one by one, each the same alone.
+    RobotState &state = state_of(context);
+    Color colors[camera_row_pixels];
+    state.world->camera_row(state.index, row, colors, 2);
+    for (unsigned pixel = 0; pixel < pixels; pixel++) {
+        uint8_t *pixel_bytes = bytes + 2 * pixel;
+        if (2 * pixel < camera_row_pixels) {
+            rgb565_bytes(colors[2 * pixel], pixel_bytes);
+        } else {
+            pixel_bytes[0] = 0;
+            pixel_bytes[1] = 0;
+        }
+    }
 }
 
 Color from_enki(const Enki::Color &color)
@@ -324,12 +349,103 @@ size_t aligned(size_t bytes)
 
 } // namespace
 
-void FreshIRSensor::init(double dt, Enki::World *world)
+FreshIRSensor::FreshIRSensor(Enki::Robot *robot,
+                             Enki::Vector position,
+                             double sensor_height,
+                             double heading,
+                             double reach,
+                             double response_maximum,
+                             double response_x0,
+                             double response_c,
+                             double noise_sd)
+  : Enki::IRSensor(robot,
+                   position,
+                   sensor_height,
+                   heading,
+                   reach,
+                   response_maximum,
+                   response_x0,
+                   response_c,
+                   noise_sd)
 {
-    Enki::IRSensor::init(dt, world);
+    for (unsigned i = 0; i < ray_count; i++) {
+        double angle = heading + rayAngles.at(i);
+        ray_directions_[i] = Enki::Vector(std::cos(angle), std::sin(angle));
+    }
+}
+
+void FreshIRSensor::init(double, Enki::World *)
+{
+    start_step(Enki::Matrix22(owner->angle));
+}
+
+void FreshIRSensor::start_step(const Enki::Matrix22 &owner_rotation)
+{
+    // Debian's IRSensor::init, operation for operation (the same values
+    // bit for bit), with the rotation given.
+    std::fill(rayDists.begin(), rayDists.end(), range);
+    absPos = owner->pos + owner_rotation * pos;
+    absOrientation = owner->angle + orientation;
+    for (size_t i = 0; i < rayCount; i++)
+        absRayAngles[i] = absOrientation + rayAngles[i];
+    absSmartPos = owner_rotation * smartPos + absPos;
     // Debian's Enki forgets this (upstream fix 7dbaa0b): without it a ray
     // that meets nothing this step keeps last step's value.
     std::fill(rayValues.begin(), rayValues.end(), 0.0);
+    for (unsigned i = 0; i < ray_count; i++)
+        world_ray_directions_[i] = owner_rotation * ray_directions_[i];
+}
+
+void FreshIRSensor::objectStep(double dt, Enki::World *world, Enki::PhysicalObject *object)
+{
+    // Debian's IRSensor::objectStep, operation for operation where it
+    // computes, with the rays that cannot reach the object skipped.
+    if (height > object->getHeight())
+        return;
+    // The object's bounding circle beyond the circle around the rays.
+    const double radius = object->getRadius();
+    const Enki::Vector from_rays_middle = object->pos - absSmartPos;
+    const double radius_sum = radius + smartRadius;
+    if (from_rays_middle.norm2() > radius_sum * radius_sum)
+        return;
+    // A ray goes on only if its line passes within the bounding circle, at
+    // a distance whose square Enki works out as |v|² sin²(ray angle -
+    // atan2(v)). The cross product with the ray's direction gives it too;
+    // both are within about 1e-13 of the exact value at these distances,
+    // and the margin (1e-6 of it) is far wider: a ray skipped here is one
+    // that Enki's test rejects.
+    const Enki::Vector to_centre = object->pos - absPos;
+    const double reach_squared = radius * radius * (1 + 1e-6) + 1e-9;
+    std::array<bool, ray_count> may_reach{};
+    bool any_may_reach = false;
+    for (unsigned i = 0; i < ray_count; i++) {
+        const Enki::Vector &direction = world_ray_directions_[i];
+        double across = direction.x * to_centre.y - direction.y * to_centre.x;
+        may_reach[i] = across * across <= reach_squared;
+        any_may_reach = any_may_reach || may_reach[i];
+    }
+    if (!any_may_reach)
+        return;
+    if (!object->isCylindric()) {
+        // A box: Enki's polygon test (the obstacles, few).
+        Enki::IRSensor::objectStep(dt, world, object);
+        return;
+    }
+    // Enki's test of a circle, which works out the arc tangent again for
+    // every ray: the same value.
+    const double bearing = to_centre.angle();
+    const double squared_radius = radius * radius;
+    for (unsigned i = 0; i < ray_count; i++) {
+        if (!may_reach[i])
+            continue;
+        const double sine = std::sin(absRayAngles[i] - bearing);
+        const double across_squared = to_centre.norm2() * (sine * sine);
+        if (across_squared <= squared_radius) {
+            double distance = std::sqrt(to_centre.norm2() - across_squared) -
+                              std::sqrt(squared_radius - across_squared);
+            updateRay(i, std::max(distance, 0.));
+        }
+    }
 }
 
 namespace
@@ -380,6 +496,32 @@ EnkiEpuck::EnkiEpuck(double wheel_noise, double camera_half_field_radians, bool 
         addLocalInteraction(&camera);
     setCylindric(body_radius, body_height, body_mass);
     setColor(body_color);
+}
+
+void EnkiEpuck::initLocalInteractions(double dt, Enki::World *world)
+{
+    // Each sensor is independent: the order of their starts does not matter.
+    const Enki::Matrix22 rotation(angle);
+    for (FreshIRSensor &sensor : infrared)
+        sensor.start_step(rotation);
+    if (sensor_count() > ir_count)
+        camera.init(dt, world);
+}
+
+void EnkiEpuck::doLocalInteractions(double dt, Enki::World *world, Enki::PhysicalObject *object)
+{
+    // Robot::doLocalInteractions in its arithmetic: the interactions in
+    // Enki's order (longest reach first) while the object is within reach.
+    const Enki::Vector from_object(pos.x - object->pos.x, pos.y - object->pos.y);
+    for (Enki::LocalInteraction *interaction : localInteractions) {
+        const double reach = interaction->getRange() + object->getRadius();
+        if (!(from_object.norm2() < reach * reach))
+            return;
+        if (interaction == &camera)
+            interaction->objectStep(dt, world, object);
+        else
+            static_cast<FreshIRSensor *>(interaction)->FreshIRSensor::objectStep(dt, world, object);
+    }
 }
 
 void EnkiEpuck::applyForces(double dt)
@@ -468,7 +610,8 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
                          world_camera_byte,
                          world_next_input_change,
                          world_adc_read_channels,
-                         world_adc_channels_steady };
+                         world_adc_channels_steady,
+                         world_camera_every_second_pixel };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);
@@ -741,7 +884,7 @@ const PixelRays &pixel_rays()
 
 } // namespace
 
-void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
+void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned pixel_step) const
 {
     const EnkiEpuck &robot = *robots_.at(index);
     // How far below the horizon the row looks.
@@ -751,7 +894,7 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
     if (depression <= 0) {
         // Above the horizon: what Enki's camera sees. Enki's pixel 0 is the
         // rightmost, the window's pixel 0 the leftmost.
-        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
+        for (unsigned pixel = 0; pixel < camera_row_pixels; pixel += pixel_step) {
             unsigned enki_pixel =
               EnkiEpuck::camera_pixels - 1 - pixel * EnkiEpuck::camera_pixels / camera_row_pixels;
             pixels[pixel] = from_enki(robot.camera.image[enki_pixel]);
@@ -792,7 +935,7 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels) const
             near.push_back(occluder);
     }
     const PixelRays &rays = pixel_rays();
-    for (unsigned pixel = 0; pixel < camera_row_pixels; pixel++) {
+    for (unsigned pixel = 0; pixel < camera_row_pixels; pixel += pixel_step) {
         // The pixel's ray turned by the robot's heading.
         Enki::Vector direction(forward.x * rays[pixel].x - forward.y * rays[pixel].y,
                                forward.y * rays[pixel].x + forward.x * rays[pixel].y);

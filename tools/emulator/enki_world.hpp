@@ -43,12 +43,34 @@ namespace aseba::arena
 {
 
 // Enki's IR sensor with its rays cleared at the start of every step, so
-// that a value falls back once the obstacle has gone.
+// that a value falls back once the obstacle has gone. It gives Enki's ray
+// distances and values bit for bit, but skips Enki's exact test (an arc
+// tangent and a sine a ray) for the rays that cannot reach an object, and
+// works out the arc tangent once for the others.
 class FreshIRSensor : public Enki::IRSensor
 {
   public:
-    using Enki::IRSensor::IRSensor;
+    // Enki's IRSensor's parameters, in its order.
+    FreshIRSensor(Enki::Robot *robot,
+                  Enki::Vector position,
+                  double sensor_height,
+                  double heading,
+                  double reach,
+                  double response_maximum,
+                  double response_x0,
+                  double response_c,
+                  double noise_sd);
     void init(double dt, Enki::World *world) override;
+    void objectStep(double dt, Enki::World *world, Enki::PhysicalObject *object) override;
+    // init() given the rotation of the owner's heading, shared by its sensors.
+    void start_step(const Enki::Matrix22 &owner_rotation);
+
+    static constexpr unsigned ray_count = 3;
+
+  private:
+    // The rays' unit directions on the robot, and in the world this step.
+    std::array<Enki::Vector, ray_count> ray_directions_;
+    std::array<Enki::Vector, ray_count> world_ray_directions_;
 };
 
 // An e-puck in Enki: Enki's e-puck body, wheels, 8 IR sensors and camera,
@@ -82,6 +104,12 @@ class EnkiEpuck : public Enki::DifferentialWheeled
     unsigned collisions = 0;
 
   protected:
+    // Enki's, with the heading's sine and cosine worked out once for all
+    // the IR sensors.
+    void initLocalInteractions(double dt, Enki::World *world) override;
+    // Enki's, with the IR sensors called directly rather than through
+    // their virtual objectStep.
+    void doLocalInteractions(double dt, Enki::World *world, Enki::PhysicalObject *object) override;
     void applyForces(double dt) override;
     void controlStep(double dt) override;
     void collisionEvent(Enki::PhysicalObject *other) override;
@@ -152,8 +180,9 @@ class EnkiWorld
     double right_wheel_speed(size_t index) const;
 
     // The colours robot `index`'s modelled camera sees on `row` (0 = top of
-    // the 120-row window), 120 pixels from left to right, into `pixels`.
-    void camera_row(size_t index, unsigned row, Color *pixels) const;
+    // the 120-row window), 120 pixels from left to right, into `pixels`;
+    // with `pixel_step` 2, pixels 0, 2, 4... only (the others untouched).
+    void camera_row(size_t index, unsigned row, Color *pixels, unsigned pixel_step = 1) const;
 
     // The boards' time at the end of the last step, in processor cycles
     // (HOST_CYCLES_PER_SECOND a second).
