@@ -158,9 +158,10 @@ fuzz: | $(FUZZ_DEPS_STAMP)
 	@scripts/fuzz.sh $(FUZZ_SECONDS) $(BUILD)
 
 # Performance figures beside the reference Aseba: one table, also written to
-# docs/benchmarks.md (see scripts/bench.sh).
+# docs/benchmarks.md (see scripts/bench.sh). `+`: the script's own make
+# calls share this make's job slots (else they build one file at a time).
 bench: $(DSPIC30_OUT)/epuck-aseba.hex | $(DEPS_STAMP) $(TEST_DEPS_STAMP) $(BENCH_DEPS_STAMP)
-	@scripts/bench.sh $(BUILD)
+	+@scripts/bench.sh $(BUILD)
 
 # The main job; RUN_ARGS go to epuck-emu (e.g. RUN_ARGS="--duration 60").
 # It builds the programs a user runs beside it, and needs the build group of
