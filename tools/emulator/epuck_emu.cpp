@@ -498,6 +498,17 @@ std::vector<aseba::arena::FeedRobot> feed_robots(aseba::arena::ArenaSimulation &
     return robots;
 }
 
+// Ahead of the wall clock (`simulated` seconds against `wall_seconds()`):
+// waits, serving tools meanwhile. A frame ends a wait early, so it waits
+// again until the clock has caught up, or a stop is asked for.
+template<typename WallSeconds>
+void keep_pace(aseba::host::Network &network, double simulated, WallSeconds wall_seconds)
+{
+    constexpr double milliseconds_per_second = 1000;
+    for (double wall = wall_seconds(); simulated > wall && !stop_requested; wall = wall_seconds())
+        network.service(int(std::ceil((simulated - wall) * milliseconds_per_second)));
+}
+
 // The arena with every robot on a simulated dsPIC (dspic30_arena.hpp);
 // returns the exit status.
 int run_dspic30_arena(const Options &options, const aseba::arena::Arena &arena)
@@ -536,13 +547,8 @@ int run_dspic30_arena(const Options &options, const aseba::arena::Arena &arena)
             if (options.duration_seconds > 0 && simulation.seconds() >= options.duration_seconds)
                 break;
             simulation.step();
-            double wall = wall_seconds();
-            while (options.realtime && simulation.seconds() > wall && !stop_requested) {
-                constexpr double milliseconds_per_second = 1000;
-                network.service(
-                  int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
-                wall = wall_seconds();
-            }
+            if (options.realtime)
+                keep_pace(network, simulation.seconds(), wall_seconds);
         }
     } catch (const std::exception &error) {
         std::fprintf(stderr, "epuck-emu: %s\n", error.what());
@@ -658,15 +664,9 @@ int run_arena(const Options &options,
             break;
         simulation.step();
         memories.sync();
-        double wall = wall_seconds();
-        // Ahead of the clock: wait, serving tools meanwhile. A frame ends a
-        // wait early, so wait again until the clock has caught up.
-        while (options.realtime && simulation.seconds() > wall && !stop_requested) {
-            constexpr double milliseconds_per_second = 1000;
-            network.service(
-              int(std::ceil((simulation.seconds() - wall) * milliseconds_per_second)));
-            wall = wall_seconds();
-        }
+        if (options.realtime)
+            keep_pace(network, simulation.seconds(), wall_seconds);
+        const double wall = wall_seconds();
         if (control)
             control->service();
         if (feed) {
