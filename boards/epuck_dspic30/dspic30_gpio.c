@@ -2,6 +2,7 @@
 // output driven through LAT or an input read through PORT. The RC5
 // receiver's falling edges come through INT0 (§3.9).
 
+#include "dspic30_pin_map.h"
 #include "epuck_dspic30_board.h"
 #include "ports/dspic30/dspic30_registers.h"
 
@@ -11,47 +12,11 @@ typedef struct pin_location {
     bool output;
 } pin_location;
 
-#define OUT true
-#define IN  false
+#define OUT                                     true
+#define IN                                      false
+#define PIN_LOCATION(pin, port, bit, direction) [pin] = { DSPIC30_TRIS##port, bit, direction },
 
-static const pin_location pin_map[EPUCK_PIN_COUNT] = {
-    [EPUCK_PIN_LED_0] = { DSPIC30_TRISA, 6, OUT },
-    [EPUCK_PIN_LED_1] = { DSPIC30_TRISA, 7, OUT },
-    [EPUCK_PIN_LED_2] = { DSPIC30_TRISA, 9, OUT },
-    [EPUCK_PIN_LED_3] = { DSPIC30_TRISA, 12, OUT },
-    [EPUCK_PIN_LED_4] = { DSPIC30_TRISA, 10, OUT },
-    [EPUCK_PIN_LED_5] = { DSPIC30_TRISA, 13, OUT },
-    [EPUCK_PIN_LED_6] = { DSPIC30_TRISA, 14, OUT },
-    [EPUCK_PIN_LED_7] = { DSPIC30_TRISA, 15, OUT },
-    [EPUCK_PIN_FRONT_LED] = { DSPIC30_TRISC, 1, OUT },
-    // ⚠ The library also names RC2 CAM_PWDN but never drives it so (§3.1).
-    [EPUCK_PIN_BODY_LED] = { DSPIC30_TRISC, 2, OUT },
-    [EPUCK_PIN_MOTOR_LEFT_A] = { DSPIC30_TRISD, 0, OUT },
-    [EPUCK_PIN_MOTOR_LEFT_B] = { DSPIC30_TRISD, 1, OUT },
-    [EPUCK_PIN_MOTOR_LEFT_C] = { DSPIC30_TRISD, 2, OUT },
-    [EPUCK_PIN_MOTOR_LEFT_D] = { DSPIC30_TRISD, 3, OUT },
-    [EPUCK_PIN_MOTOR_RIGHT_A] = { DSPIC30_TRISD, 4, OUT },
-    [EPUCK_PIN_MOTOR_RIGHT_B] = { DSPIC30_TRISD, 5, OUT },
-    [EPUCK_PIN_MOTOR_RIGHT_C] = { DSPIC30_TRISD, 6, OUT },
-    [EPUCK_PIN_MOTOR_RIGHT_D] = { DSPIC30_TRISD, 7, OUT },
-    [EPUCK_PIN_IR_PULSE_0_4] = { DSPIC30_TRISF, 7, OUT },
-    [EPUCK_PIN_IR_PULSE_1_5] = { DSPIC30_TRISF, 8, OUT },
-    [EPUCK_PIN_IR_PULSE_2_6] = { DSPIC30_TRISG, 0, OUT },
-    [EPUCK_PIN_IR_PULSE_3_7] = { DSPIC30_TRISG, 1, OUT },
-    [EPUCK_PIN_CAMERA_RESET] = { DSPIC30_TRISC, 13, OUT },
-    [EPUCK_PIN_AUDIO_ON] = { DSPIC30_TRISF, 0, OUT },
-    // ⚠ Selector pull-ups and polarity are undocumented; read raw as the
-    // library does (§3.8).
-    [EPUCK_PIN_SELECTOR_0] = { DSPIC30_TRISG, 6, IN },
-    [EPUCK_PIN_SELECTOR_1] = { DSPIC30_TRISG, 7, IN },
-    [EPUCK_PIN_SELECTOR_2] = { DSPIC30_TRISG, 8, IN },
-    [EPUCK_PIN_SELECTOR_3] = { DSPIC30_TRISG, 9, IN },
-    [EPUCK_PIN_BATTERY_LOW] = { DSPIC30_TRISF, 1, IN },
-    [EPUCK_PIN_REMOTE] = { DSPIC30_TRISF, 6, IN },
-    [EPUCK_PIN_CAMERA_HREF] = { DSPIC30_TRISC, 3, IN },
-    [EPUCK_PIN_CAMERA_VSYNC] = { DSPIC30_TRISC, 4, IN },
-    [EPUCK_PIN_CAMERA_PCLK] = { DSPIC30_TRISC, 14, IN },
-};
+static const pin_location pin_map[EPUCK_PIN_COUNT] = { DSPIC30_EPUCK_PINS(PIN_LOCATION) };
 
 // The camera's data bus: the upper byte of port D, inputs (§3.5).
 #define CAMERA_DATA_BITS 0xFF00u

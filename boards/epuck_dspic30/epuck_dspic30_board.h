@@ -1,6 +1,6 @@
 // The e-puck on its dsPIC30F6014A: the e-puck's board interface
 // (robots/epuck/epuck_board.h) on the chip's peripherals. The pins by name
-// (dspic30_gpio.c), the robot's four periodic timers on Timers 2 to 5
+// (dspic30_pin_map.h, dspic30_gpio.c), the robot's four periodic timers on Timers 2 to 5
 // (dspic30_timers.c), the analog inputs and their scans (dspic30_adc.c), the
 // I2C bus (dspic30_i2c.c) and the camera's pixel port (dspic30_camera.c),
 // with their state in the chip's struct hal_board (ports/dspic30/dspic30_chip.h).

@@ -4,6 +4,10 @@
 
 #include <array>
 
+extern "C" {
+#include "boards/epuck_dspic30/dspic30_pin_map.h"
+}
+
 namespace aseba::arena
 {
 namespace
@@ -14,45 +18,14 @@ struct PinPlace {
     uint8_t bit;
 };
 
-// Where each pin of the e-puck is on the chip: boards/epuck_dspic30/dspic30_gpio.c's
-// table, by port letter.
+// Where each pin of the e-puck is on the chip, from the board's own list.
+#define PIN_PLACE(pin, port, bit, direction) places[pin] = { (#port)[0], bit };
 constexpr std::array<PinPlace, EPUCK_PIN_COUNT> pin_places = [] {
     std::array<PinPlace, EPUCK_PIN_COUNT> places{};
-    places[EPUCK_PIN_LED_0] = { 'A', 6 };
-    places[EPUCK_PIN_LED_1] = { 'A', 7 };
-    places[EPUCK_PIN_LED_2] = { 'A', 9 };
-    places[EPUCK_PIN_LED_3] = { 'A', 12 };
-    places[EPUCK_PIN_LED_4] = { 'A', 10 };
-    places[EPUCK_PIN_LED_5] = { 'A', 13 };
-    places[EPUCK_PIN_LED_6] = { 'A', 14 };
-    places[EPUCK_PIN_LED_7] = { 'A', 15 };
-    places[EPUCK_PIN_FRONT_LED] = { 'C', 1 };
-    places[EPUCK_PIN_BODY_LED] = { 'C', 2 };
-    places[EPUCK_PIN_MOTOR_LEFT_A] = { 'D', 0 };
-    places[EPUCK_PIN_MOTOR_LEFT_B] = { 'D', 1 };
-    places[EPUCK_PIN_MOTOR_LEFT_C] = { 'D', 2 };
-    places[EPUCK_PIN_MOTOR_LEFT_D] = { 'D', 3 };
-    places[EPUCK_PIN_MOTOR_RIGHT_A] = { 'D', 4 };
-    places[EPUCK_PIN_MOTOR_RIGHT_B] = { 'D', 5 };
-    places[EPUCK_PIN_MOTOR_RIGHT_C] = { 'D', 6 };
-    places[EPUCK_PIN_MOTOR_RIGHT_D] = { 'D', 7 };
-    places[EPUCK_PIN_IR_PULSE_0_4] = { 'F', 7 };
-    places[EPUCK_PIN_IR_PULSE_1_5] = { 'F', 8 };
-    places[EPUCK_PIN_IR_PULSE_2_6] = { 'G', 0 };
-    places[EPUCK_PIN_IR_PULSE_3_7] = { 'G', 1 };
-    places[EPUCK_PIN_CAMERA_RESET] = { 'C', 13 };
-    places[EPUCK_PIN_AUDIO_ON] = { 'F', 0 };
-    places[EPUCK_PIN_SELECTOR_0] = { 'G', 6 };
-    places[EPUCK_PIN_SELECTOR_1] = { 'G', 7 };
-    places[EPUCK_PIN_SELECTOR_2] = { 'G', 8 };
-    places[EPUCK_PIN_SELECTOR_3] = { 'G', 9 };
-    places[EPUCK_PIN_BATTERY_LOW] = { 'F', 1 };
-    places[EPUCK_PIN_REMOTE] = { 'F', 6 };
-    places[EPUCK_PIN_CAMERA_HREF] = { 'C', 3 };
-    places[EPUCK_PIN_CAMERA_VSYNC] = { 'C', 4 };
-    places[EPUCK_PIN_CAMERA_PCLK] = { 'C', 14 };
+    DSPIC30_EPUCK_PINS(PIN_PLACE)
     return places;
 }();
+#undef PIN_PLACE
 
 // The camera's data lines: the upper byte of port D (§3.5).
 constexpr unsigned camera_data_shift = 8;

@@ -14,7 +14,7 @@
 // - the I2C bus holds the camera at its address, its registers the world's;
 // - the camera's pixel port runs on the chip's clock (dspic30_pixel_port.hpp).
 //
-// The pins are those of boards/epuck_dspic30/dspic30_gpio.c. Not modelled:
+// The pins are those of boards/epuck_dspic30/dspic30_pin_map.h. Not modelled:
 // the remote's INT0 edge interrupt (the simulator has no external
 // interrupts), so RC5 frames do not reach the firmware.
 
