@@ -488,7 +488,7 @@ TEST(Program, Uart1TcpTargetsAndPortsInUse)
 }
 
 // --uart2: UART2's registers (0x0216-0x021E) on their own TCP port, UART1
-// left on standard input and output; one UART at most on stdio.
+// unconnected; one UART at most on stdio.
 TEST(Program, Uart2OnTcpEchoes)
 {
     test::ScratchFolder folder;
