@@ -775,6 +775,66 @@ done:   bra done
     EXPECT_EQ(m.cpu().w(4) & 0x00C0, 0);
 }
 
+// A signal on a timer's clock pin: rising edges every 50 cycles, from cycle 25.
+class Pulses : public ClockInput
+{
+  public:
+    uint64_t rising_edges(uint64_t from, uint64_t to) const override
+    {
+        return until(to) - until(from);
+    }
+    uint64_t rising_edge(uint64_t after, uint64_t n) const override
+    {
+        return first + (until(after) + n - 1) * period;
+    }
+
+  private:
+    static uint64_t until(uint64_t cycle) // edges at or before `cycle`
+    {
+        return cycle < first ? 0 : (cycle - first) / period + 1;
+    }
+    static constexpr uint64_t first = 25, period = 50;
+};
+
+// Fact sheet §2.2: with TCS = 1 a timer counts the rising edges of its TxCK
+// pin (T4CK for Timer4), through the prescaler, and on reaching PRx sets
+// its flag as with the instruction clock: PR4 = 3 at 1:1 flags on the 4th
+// edge after it is started. Without a signal on the pin it does not count.
+TEST(Timers, ExternalClockCountsRisingEdges)
+{
+    const std::string program = R"(
+start:  mov #3, w0
+        mov w0, 0x011A          ; PR4
+        clr 0x0114              ; TMR4
+        mov #0x8002, w0
+        mov w0, 0x011E          ; T4CON: TON, TCS, 1:1
+on:     btss 0x0086, #5         ; IFS1.T4IF
+        bra on
+flagged: mov 0x0114, w2         ; TMR4 just after the match: 0
+        repeat #119
+        nop
+        mov 0x0114, w3          ; and 120 cycles later
+done:   bra done
+)";
+    Pulses pulses;
+    Machine m(program);
+    m.simulator().timers().connect_clock(4, &pulses);
+    ASSERT_TRUE(m.run_to("on"));
+    const uint64_t on = m.cpu().cycles();
+    ASSERT_TRUE(m.run_to("flagged"));
+    const uint64_t fourth_edge = pulses.rising_edge(on, 4);
+    EXPECT_GE(m.cpu().cycles(), fourth_edge);
+    EXPECT_LE(m.cpu().cycles(), fourth_edge + 3); // the polling loop's 3 cycles
+    ASSERT_TRUE(m.run_to("done"));
+    EXPECT_EQ(m.cpu().w(2), 0);
+    // Read some 122 cycles after the match: the edges 50 and 100 cycles after it.
+    EXPECT_EQ(m.cpu().w(3), 2);
+
+    Machine unconnected(program);
+    ASSERT_TRUE(unconnected.run_to("on"));
+    EXPECT_FALSE(unconnected.run_to("flagged"));
+}
+
 // The I/O ports as the family reference manual's I/O Ports section gives
 // them, on the implemented bits of fact sheet §2.5 (p30F6014A.inc): after a
 // reset every pin is an input (TRIS all ones on implemented bits, 0

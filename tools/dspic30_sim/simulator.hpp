@@ -99,6 +99,10 @@ class Simulator
     {
         return adc_;
     }
+    Timers &timers()
+    {
+        return timers_;
+    }
     I2cMaster &i2c()
     {
         return i2c_;

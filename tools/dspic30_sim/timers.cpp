@@ -58,11 +58,29 @@ bool Timers::paired(int timer) const
     return (timer == 2 || timer == 4) && (control_[timer] & con_t32);
 }
 
+void Timers::connect_clock(int timer, const ClockInput *input)
+{
+    const uint64_t now = cpu_.cycles();
+    sync(timer, now);
+    clock_inputs_[timer] = input;
+    counters_[timer].synced_at = now;
+    schedule(timer, now);
+}
+
+// The edges timer `timer` counts when its TCS is set, else nullptr (it
+// counts the instruction clock).
+const ClockInput *Timers::external_clock(int timer) const
+{
+    return (control_[timer] & con_tcs) ? clock_inputs_[timer] : nullptr;
+}
+
 bool Timers::counting(int timer) const
 {
     if ((timer == 3 || timer == 5) && paired(timer - 1))
         return false;
-    return (control_[timer] & con_ton) && !(control_[timer] & con_tcs);
+    if (!(control_[timer] & con_ton))
+        return false;
+    return !(control_[timer] & con_tcs) || clock_inputs_[timer] != nullptr;
 }
 
 uint64_t Timers::prescale(int timer) const
@@ -84,7 +102,9 @@ void Timers::sync(int timer, uint64_t now)
         c.synced_at = std::max(c.synced_at, now);
         return;
     }
-    const uint64_t total = c.phase + (now - c.synced_at);
+    const ClockInput *input = external_clock(timer);
+    const uint64_t counted = input ? input->rising_edges(c.synced_at, now) : now - c.synced_at;
+    const uint64_t total = c.phase + counted;
     uint64_t ticks = total / prescale(timer);
     c.phase = total % prescale(timer);
     c.synced_at = now;
@@ -115,7 +135,9 @@ void Timers::schedule(int timer, uint64_t now)
     const uint64_t range = paired(timer) ? uint64_t{ 1 } << 32 : word_range;
     const uint64_t p = period(timer);
     const uint64_t to_match = c.count <= p ? p - c.count + 1 : range - c.count + p + 1;
-    c.match_at = now + to_match * prescale(timer) - c.phase;
+    const uint64_t counts = to_match * prescale(timer) - c.phase;
+    const ClockInput *input = external_clock(timer);
+    c.match_at = input ? input->rising_edge(now, counts) : now + counts;
     cpu_.reschedule();
 }
 
