@@ -221,7 +221,7 @@ static void handle_command(node_state *node, uint16_t type, const uint16_t *payl
         if (hooks->suspend_to_ram != NULL)
             hooks->suspend_to_ram(hooks->context);
         break;
-    case NODE_MSG_GET_NODE_DESCRIPTION: node_send_description(node); break;
+    case NODE_MSG_GET_NODE_DESCRIPTION: node_start_description(node); break;
     default: break;
     }
 }
@@ -265,7 +265,7 @@ static void handle_frame(node_state *node)
         if (type == NODE_MSG_LIST_NODES)
             node_send_words(node, NODE_MSG_NODE_PRESENT, &version, 1);
         else if (payload[0] <= NODE_OLDEST_DESCRIPTION_VERSION)
-            node_send_description(node);
+            node_start_description(node);
         return;
     }
     if (payload[PAYLOAD_DEST] != node->vm.node_id) {
@@ -312,16 +312,24 @@ bool node_poll(node_state *node, uint32_t now_ms)
 {
     const vm_state *vm = &node->vm;
     bool running;
+    bool describing;
 
     expire_partial_frame(node, now_ms);
     vm_run(&node->vm, NODE_STEP_BUDGET);
+    // A description is sent a frame per poll, and only while no received
+    // frame waits: sending the whole of it (some 65 frames, 0.17 s at
+    // 115,200 baud) at once would leave a robot's receive buffer to fill
+    // meanwhile with what other robots and hosts send, beyond its size.
     if (node->frame_ready) {
         handle_frame(node);
         node->frame_ready = false;
         node->received = 0;
+        describing = node->description_left != 0;
+    } else {
+        describing = node_continue_description(node);
     }
     start_local_event(node);
 
     running = vm_is_event_active(vm) && !(vm->flags & VM_FLAG_STEP_BY_STEP);
-    return running || (node->pending_local_events != 0 && !vm_is_event_active(vm));
+    return running || describing || (node->pending_local_events != 0 && !vm_is_event_active(vm));
 }

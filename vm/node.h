@@ -109,6 +109,11 @@ typedef struct node_state {
     uint16_t transmit_fill;
     uint16_t transmit_left; // bytes the frame being sent still owes
 
+    // The description being sent, a frame per node_poll.
+    uint16_t description_next; // the next frame's number (0: DESCRIPTION)
+    uint16_t description_left; // frames still to send
+    bool description_again;    // asked for once more meanwhile
+
     uint32_t pending_local_events; // bit i: local event i was raised
     node_error_counters errors;
 } node_state;

@@ -118,33 +118,47 @@ static void send_native(node_state *node, const vm_native *native)
     node_frame_end(node);
 }
 
-void node_send_description(node_state *node)
+// The description's frames: DESCRIPTION, the named variables, the local
+// events, the natives.
+static uint16_t description_frame_count(const node_state *node)
+{
+    return (uint16_t)(1u + node->description->variable_count +
+                      node->description->local_event_count + native_count(node));
+}
+
+// Sends the description's frame number `index` (0: DESCRIPTION).
+static void send_description_frame(node_state *node, uint16_t index)
 {
     const node_description *description = node->description;
     const vm_memory *memory = &node->vm.memory;
-    uint8_t length = node_string_length(description->name);
-    uint16_t i;
+    uint8_t length;
 
-    node_frame_begin(node, NODE_MSG_DESCRIPTION, (uint16_t)(1 + length + DESCRIPTION_FIXED_BYTES));
-    node_frame_put_string(node, description->name, length);
-    node_frame_put_u16(node, description->protocol_version);
-    node_frame_put_u16(node, memory->bytecode_size);
-    node_frame_put_u16(node, memory->stack_size);
-    node_frame_put_u16(node, memory->variables_size);
-    node_frame_put_u16(node, description->variable_count);
-    node_frame_put_u16(node, description->local_event_count);
-    node_frame_put_u16(node, native_count(node));
-    node_frame_end(node);
-
-    for (i = 0; i < description->variable_count; i++) {
-        const node_named_variable *variable = &description->variables[i];
+    if (index == 0) {
+        length = node_string_length(description->name);
+        node_frame_begin(
+          node, NODE_MSG_DESCRIPTION, (uint16_t)(1 + length + DESCRIPTION_FIXED_BYTES));
+        node_frame_put_string(node, description->name, length);
+        node_frame_put_u16(node, description->protocol_version);
+        node_frame_put_u16(node, memory->bytecode_size);
+        node_frame_put_u16(node, memory->stack_size);
+        node_frame_put_u16(node, memory->variables_size);
+        node_frame_put_u16(node, description->variable_count);
+        node_frame_put_u16(node, description->local_event_count);
+        node_frame_put_u16(node, native_count(node));
+        node_frame_end(node);
+        return;
+    }
+    index--;
+    if (index < description->variable_count) {
+        const node_named_variable *variable = &description->variables[index];
 
         node_send_word_and_string(
           node, NODE_MSG_NAMED_VARIABLE_DESCRIPTION, variable->size, variable->name);
+        return;
     }
-
-    for (i = 0; i < description->local_event_count; i++) {
-        const node_local_event *event = &description->local_events[i];
+    index = (uint16_t)(index - description->variable_count);
+    if (index < description->local_event_count) {
+        const node_local_event *event = &description->local_events[index];
         uint8_t name_length = node_string_length(event->name);
 
         length = node_string_length(event->description);
@@ -153,10 +167,36 @@ void node_send_description(node_state *node)
         node_frame_put_string(node, event->name, name_length);
         node_frame_put_string(node, event->description, length);
         node_frame_end(node);
+        return;
     }
+    index = (uint16_t)(index - description->local_event_count);
+    send_native(node, &node->vm.natives.natives[index]);
+}
 
-    for (i = 0; i < native_count(node); i++)
-        send_native(node, &node->vm.natives.natives[i]);
+void node_start_description(node_state *node)
+{
+    // One asked while another is being sent follows it whole: a host that
+    // collects the frames may be counting those of the first.
+    if (node->description_left != 0) {
+        node->description_again = true;
+        return;
+    }
+    node->description_next = 0;
+    node->description_left = description_frame_count(node);
+}
+
+bool node_continue_description(node_state *node)
+{
+    if (node->description_left == 0)
+        return false;
+    send_description_frame(node, node->description_next);
+    node->description_next++;
+    node->description_left--;
+    if (node->description_left == 0 && node->description_again) {
+        node->description_again = false;
+        node_start_description(node);
+    }
+    return true;
 }
 
 // --- fingerprint -------------------------------------------------------------

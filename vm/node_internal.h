@@ -31,8 +31,13 @@ void node_send_word_and_string(node_state *node, uint16_t type, uint16_t word, c
 // and split so that none exceeds NODE_MAX_VARIABLES_WORDS values.
 void node_send_variables(node_state *node, uint16_t start, uint16_t length);
 
-// DESCRIPTION, then every named variable, local event and native function.
-void node_send_description(node_state *node);
+// Asks for the description (DESCRIPTION, then every named variable, local
+// event and native function), for node_continue_description to send; after
+// the one being sent, if any.
+void node_start_description(node_state *node);
+
+// Sends the description's next frame; false when none is left.
+bool node_continue_description(node_state *node);
 
 // The VM's reports, encoded as protocol messages; the context is the node.
 extern const vm_callbacks node_vm_callbacks;
