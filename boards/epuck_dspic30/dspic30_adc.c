@@ -23,20 +23,32 @@ static uint8_t count_channels(uint16_t mask)
     return count;
 }
 
+// ADCS + 1 for a scan of n channels (index n), or 0 where n channels cannot
+// fill the scan period with whole Tad. Constants: the ADC's interrupt sets
+// the next scan after each one (epuck_board_adc_scan_select), and with the
+// 32-bit divisions done there it took longer than the 61 µs between two
+// scans, so that UART1 below it overran (docs/dspic30-sim.md).
+#define HALF_CYCLES_PER_SCAN (HALF_CYCLES_PER_TAD_STEP * CYCLES_PER_SCAN)
+#define TAD_STEPS(n)                                                                               \
+    (HALF_CYCLES_PER_SCAN % ((n)*TAD_PER_CHANNEL) == 0                                             \
+       ? HALF_CYCLES_PER_SCAN / ((n)*TAD_PER_CHANNEL)                                              \
+       : 0u)
+static const uint16_t tad_steps[] = {
+    0u, TAD_STEPS(1u), TAD_STEPS(2u), TAD_STEPS(3u), TAD_STEPS(4u), TAD_STEPS(5u), TAD_STEPS(6u)
+};
+typedef char table_covers_every_scan
+  [sizeof tad_steps / sizeof tad_steps[0] == EPUCK_ADC_SCAN_MAX_CHANNELS + 1u ? 1 : -1];
+
 bool dspic30_adc_scan_clock(uint8_t channel_count, uint16_t *adcs)
 {
-    uint32_t half_cycles = HALF_CYCLES_PER_TAD_STEP * CYCLES_PER_SCAN;
-    uint32_t per_tad;
+    uint16_t steps;
 
-    if (channel_count == 0)
+    if (channel_count == 0 || channel_count > EPUCK_ADC_SCAN_MAX_CHANNELS)
         return false;
-    per_tad = (uint32_t)channel_count * TAD_PER_CHANNEL;
-    if (half_cycles % per_tad != 0)
+    steps = tad_steps[channel_count]; // ADCS + 1
+    if (steps < DSPIC30_ADC_MIN_ADCS + 1u || steps > DSPIC30_ADC_MAX_ADCS + 1u)
         return false;
-    per_tad = half_cycles / per_tad; // ADCS + 1
-    if (per_tad < DSPIC30_ADC_MIN_ADCS + 1u || per_tad > DSPIC30_ADC_MAX_ADCS + 1u)
-        return false;
-    *adcs = (uint16_t)(per_tad - 1u);
+    *adcs = (uint16_t)(steps - 1u);
     return true;
 }
 

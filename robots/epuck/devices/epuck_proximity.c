@@ -15,6 +15,7 @@ void epuck_proximity_init(epuck_proximity *proximity, hal_board *board)
     proximity->board = board;
     proximity->pair = 0;
     proximity->calibration_sets = 0;
+    proximity->offsets_set = false;
     proximity->fresh = false;
     for (i = 0; i < EPUCK_PROXIMITY_COUNT; i++) {
         proximity->ambient_reading[i] = 0;
@@ -40,7 +41,9 @@ void epuck_proximity_ambient_sampled(epuck_proximity *proximity, const uint16_t 
 }
 
 // A full set is complete: it is ready, and goes into the calibration while
-// that lasts.
+// that lasts. (Called from the scan's interrupt: the sums are divided into
+// offsets later, in epuck_proximity_take, as 32-bit divisions take too long
+// there on a 16-bit chip.)
 static void set_complete(epuck_proximity *proximity)
 {
     uint8_t i;
@@ -49,11 +52,6 @@ static void set_complete(epuck_proximity *proximity)
         for (i = 0; i < EPUCK_PROXIMITY_COUNT; i++)
             proximity->calibration_sum[i] += proximity->reflected[i];
         proximity->calibration_sets++;
-        if (proximity->calibration_sets == EPUCK_PROXIMITY_CALIBRATION_SETS) {
-            for (i = 0; i < EPUCK_PROXIMITY_COUNT; i++)
-                proximity->offset[i] = (int16_t)(proximity->calibration_sum[i] /
-                                                 (int32_t)EPUCK_PROXIMITY_CALIBRATION_SETS);
-        }
     }
     proximity->fresh = true;
 }
@@ -82,9 +80,19 @@ bool epuck_proximity_calibrated(epuck_proximity *proximity)
 
 bool epuck_proximity_take(epuck_proximity *proximity, int16_t *prox, int16_t *ambient)
 {
-    hal_critical_state state = hal_critical_enter(proximity->board);
-    bool fresh = proximity->fresh;
+    hal_critical_state state;
+    bool fresh;
     uint8_t i;
+
+    // The sums no longer change once the calibration is over.
+    if (!proximity->offsets_set && epuck_proximity_calibrated(proximity)) {
+        for (i = 0; i < EPUCK_PROXIMITY_COUNT; i++)
+            proximity->offset[i] =
+              (int16_t)(proximity->calibration_sum[i] / (int32_t)EPUCK_PROXIMITY_CALIBRATION_SETS);
+        proximity->offsets_set = true;
+    }
+    state = hal_critical_enter(proximity->board);
+    fresh = proximity->fresh;
 
     if (fresh) {
         for (i = 0; i < EPUCK_PROXIMITY_COUNT; i++) {

@@ -29,6 +29,7 @@ typedef struct epuck_proximity {
     int32_t calibration_sum[EPUCK_PROXIMITY_COUNT];
     int16_t offset[EPUCK_PROXIMITY_COUNT];
     uint16_t calibration_sets; // full sets summed so far
+    bool offsets_set;          // from the sums, once calibration_sets is complete
     bool fresh;                // a full set completed, not yet taken
 } epuck_proximity;
 
