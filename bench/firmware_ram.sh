@@ -18,8 +18,10 @@ sources=()
 # (MAKEFLAGS emptied: run from make, the inner make must not look for its jobs.)
 for source in $(MAKEFLAGS= make -s --no-print-directory sources-DSPIC30_APPLICATION); do
     # The DSP-engine kernel needs XC16's builtins (the portable one stands
-    # for it), the reset code is dsPIC assembly.
-    [[ $source == ports/dspic30/dspic30_dsp_kernel.c || $source == *.s ]] && continue
+    # for it); the reset code and the camera's timed row read are dsPIC
+    # assembly (ram_image.c stands for the latter).
+    [[ $source == ports/dspic30/dspic30_dsp_kernel.c || $source == boards/epuck_dspic30/dspic30_camera_row.c ||
+       $source == *.s ]] && continue
     sources+=("$source")
 done
 sources+=(native_functions/nat_dsp_kernel.c bench/ram_image.c)

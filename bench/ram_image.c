@@ -4,6 +4,7 @@
 // accesses to one volatile word here, so that the image's RAM is the
 // firmware's own, not a model of the chip's registers.
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "ports/dspic30/dspic30_registers.h"
@@ -55,4 +56,11 @@ void dspic30_simulated_jump(uint16_t address)
     register_latch = address;
     for (;;)
         ;
+}
+
+// The camera's timed row read is dsPIC assembly and uses no RAM of its own.
+bool dspic30_camera_read_row(uint8_t *bytes, uint16_t pixels, uint16_t polls)
+{
+    register_latch = (uint16_t)(pixels ^ polls);
+    return bytes != 0;
 }

@@ -87,7 +87,8 @@ image() { # name compiler size-tool flags...
 # Proxies of the two dsPIC images' sizes: each image's sources as `make
 # dspic30` links them (ports/dspic30/module.mk), against simulated registers
 # (tests/cross/simulated_registers.c, with the portable DSP kernel for the
-# DSP engine's, without the reset code in dsPIC assembly), unused functions
+# DSP engine's, without the reset code in dsPIC assembly, a loop for the
+# camera's timed row read: tests/cross/application_image.c), unused functions
 # dropped. linker/epuck-bootloader.gld gives
 # the bootloader 2048 instructions (bootloader/README.md turns its bytes
 # into instructions); the application's RAM must fit the chip's 8 KB.
@@ -99,7 +100,7 @@ dspic30_image() { # image(application|bootloader) name compiler size-tool flags.
     local image_sources
     # shellcheck disable=SC2207 # the list is words
     image_sources=($(env -u MAKEFLAGS -u MFLAGS make -s --no-print-directory "sources-DSPIC30_$upper" |
-                         tr ' ' '\n' | grep -v '\.s$' |
+                         tr ' ' '\n' | grep -v '\.s$' | grep -v 'boards/epuck_dspic30/dspic30_camera_row.c' |
                          sed 's|ports/dspic30/dspic30_dsp_kernel.c|native_functions/nat_dsp_kernel.c|'))
     "$compiler" "${flags[@]}" "$@" -DDSPIC30_SIMULATED_REGISTERS -Wl,--gc-sections \
         "${image_sources[@]}" tests/cross/simulated_registers.c "tests/cross/${image}_image.c" \

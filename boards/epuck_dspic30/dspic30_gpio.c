@@ -27,8 +27,6 @@ void dspic30_gpio_init(hal_board *board)
 
     board->edge_callback = 0;
     board->edge_context = 0;
-    board->camera_phase = DSPIC30_CAMERA_IDLE;
-    board->camera_bytes = 0;
     // Outputs start low, as the library's port initialisation leaves them.
     for (i = 0; i < EPUCK_PIN_COUNT; i++) {
         const pin_location *pin = &pin_map[i];

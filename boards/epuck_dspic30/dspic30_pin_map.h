@@ -10,6 +10,10 @@
 #ifndef DSPIC30_PIN_MAP_H
 #define DSPIC30_PIN_MAP_H
 
+// HREF's bit of port C, which the camera's timed row read tests directly
+// (dspic30_camera_row.c).
+#define DSPIC30_CAMERA_HREF_BIT 3
+
 #define DSPIC30_EPUCK_PINS(X)                                                                      \
     X(EPUCK_PIN_LED_0, A, 6, OUT)                                                                  \
     X(EPUCK_PIN_LED_1, A, 7, OUT)                                                                  \
@@ -44,7 +48,7 @@
     X(EPUCK_PIN_SELECTOR_3, G, 9, IN)                                                              \
     X(EPUCK_PIN_BATTERY_LOW, F, 1, IN)                                                             \
     X(EPUCK_PIN_REMOTE, F, 6, IN)                                                                  \
-    X(EPUCK_PIN_CAMERA_HREF, C, 3, IN)                                                             \
+    X(EPUCK_PIN_CAMERA_HREF, C, DSPIC30_CAMERA_HREF_BIT, IN)                                       \
     X(EPUCK_PIN_CAMERA_VSYNC, C, 4, IN)                                                            \
     X(EPUCK_PIN_CAMERA_PCLK, C, 14, IN)
 

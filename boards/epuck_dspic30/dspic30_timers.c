@@ -1,6 +1,8 @@
-// The HAL's periodic timers on the chip's 16-bit Timers 2 to 5 (§2.2,
-// §3.13): the agenda on Timer2, the motors on Timer5 (left) and Timer4
-// (right) as the library does, and Timer3 spare.
+// The robot's periodic timers on the chip's 16-bit Timers 2, 3 and 5 (§2.2,
+// §3.13): the motors on Timer5 (left) and Timer2 (right), the remote's
+// sampling on Timer3. Timer4 counts the camera's rows (dspic30_camera.c):
+// the library's motor driver on Timers 4 and 5 and its camera capture on
+// the same two cannot run together (§3.13), so the motors moved.
 
 #include "epuck_dspic30_board.h"
 #include "ports/dspic30/dspic30_registers.h"
@@ -34,14 +36,6 @@ typedef struct timer_registers {
 } timer_registers;
 
 static const timer_registers timer_map[EPUCK_TIMER_COUNT] = {
-    [EPUCK_TIMER_AGENDA] = { DSPIC30_T2CON,
-                             DSPIC30_PR2,
-                             DSPIC30_TMR2,
-                             DSPIC30_IFS0,
-                             DSPIC30_IEC0,
-                             DSPIC30_IRQ0_T2,
-                             DSPIC30_IPC_T2,
-                             DSPIC30_SHIFT_T2 },
     [EPUCK_TIMER_MOTOR_LEFT] = { DSPIC30_T5CON,
                                  DSPIC30_PR5,
                                  DSPIC30_TMR5,
@@ -50,14 +44,14 @@ static const timer_registers timer_map[EPUCK_TIMER_COUNT] = {
                                  DSPIC30_IRQ1_T5,
                                  DSPIC30_IPC_T5,
                                  DSPIC30_SHIFT_T5 },
-    [EPUCK_TIMER_MOTOR_RIGHT] = { DSPIC30_T4CON,
-                                  DSPIC30_PR4,
-                                  DSPIC30_TMR4,
-                                  DSPIC30_IFS1,
-                                  DSPIC30_IEC1,
-                                  DSPIC30_IRQ1_T4,
-                                  DSPIC30_IPC_T4,
-                                  DSPIC30_SHIFT_T4 },
+    [EPUCK_TIMER_MOTOR_RIGHT] = { DSPIC30_T2CON,
+                                  DSPIC30_PR2,
+                                  DSPIC30_TMR2,
+                                  DSPIC30_IFS0,
+                                  DSPIC30_IEC0,
+                                  DSPIC30_IRQ0_T2,
+                                  DSPIC30_IPC_T2,
+                                  DSPIC30_SHIFT_T2 },
     [EPUCK_TIMER_SPARE] = { DSPIC30_T3CON,
                             DSPIC30_PR3,
                             DSPIC30_TMR3,

@@ -91,6 +91,9 @@
 #define DSPIC30_PRIORITY_UART1  5u // as the GCtronic library
 #define DSPIC30_PRIORITY_TIMERS 4u
 #define DSPIC30_PRIORITY_REMOTE 4u
+// Timer4 counting the camera's rows: its interrupt waits for a row to end
+// (dspic30_camera.c), so below UART1, which comes in meanwhile.
+#define DSPIC30_PRIORITY_CAMERA 4u
 #define DSPIC30_PRIORITY_CLOCK  3u
 #define DSPIC30_PRIORITY_ALL    7u // the CPU priority that masks every source
 
@@ -144,15 +147,22 @@
 // --- camera pixel port (§3.5) ----------------------------------------------------------
 // ⚠ The levels of VSYNC/HREF during a frame/row and the PCLK edge on which a
 // byte is valid are not in the sources read (§3.5 only names the lines).
+// VSYNC is taken as active during the window's rows (the PO3030K table's
+// VSYNC start and stop rows are the window's), HREF during a row's bytes.
 #define DSPIC30_CAMERA_SYNC_ACTIVE_LEVEL 1
 #define DSPIC30_CAMERA_PCLK_LATCH_LEVEL  1
-// A step of a row read watches VSYNC for at most this many polls (a few
-// hundred microseconds) for a frame to begin; a read that sees none within
-// DSPIC30_CAMERA_FRAME_TIMEOUT_MS fails.
-#define DSPIC30_CAMERA_STEP_POLLS       400u
+// The library's capture reads a row with a loop of exactly 8 instruction
+// cycles per byte (§3.5); dspic30_camera_row.c does the same, its loop
+// written for this value (checked there).
+#define DSPIC30_CAMERA_CYCLES_PER_BYTE 8u
+// Polls of HREF (some 25 cycles each) for the row above the line to end,
+// and (5 cycles each, every interrupt masked) for the line to begin: a row
+// is 3,408 cycles at most (frame width 851, a quarter in QQVGA, 8 cycles a
+// byte), so each allows about two rows before the read is abandoned.
+#define DSPIC30_CAMERA_ROW_END_POLLS    300u
+#define DSPIC30_CAMERA_LINE_START_POLLS 1400u
+// A read whose line did not come within this time fails.
 #define DSPIC30_CAMERA_FRAME_TIMEOUT_MS 500u
-// Polls of HREF or PCLK, once a frame has begun, before the read is abandoned.
-#define DSPIC30_CAMERA_WAIT_ATTEMPTS 2000000ul
 
 // --- busy waiting --------------------------------------------------------------------------
 // ⚠ Cycles one iteration of the delay loop takes (a NOP plus loop overhead),

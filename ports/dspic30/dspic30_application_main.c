@@ -26,6 +26,7 @@ void dspic30_board_init(hal_board *chip_board)
     dspic30_timers_init(chip_board);
     dspic30_adc_init(chip_board);
     dspic30_i2c_init(chip_board);
+    dspic30_camera_init(chip_board);
 }
 
 int main(void)
@@ -62,7 +63,7 @@ void DSPIC30_INTERRUPT _U1TXInterrupt(void)
 
 void DSPIC30_INTERRUPT _T2Interrupt(void)
 {
-    dspic30_on_timer(&board, EPUCK_TIMER_AGENDA);
+    dspic30_on_timer(&board, EPUCK_TIMER_MOTOR_RIGHT);
 }
 
 void DSPIC30_INTERRUPT _T3Interrupt(void)
@@ -72,7 +73,7 @@ void DSPIC30_INTERRUPT _T3Interrupt(void)
 
 void DSPIC30_INTERRUPT _T4Interrupt(void)
 {
-    dspic30_on_timer(&board, EPUCK_TIMER_MOTOR_RIGHT);
+    dspic30_on_camera_row(&board);
 }
 
 void DSPIC30_INTERRUPT _T5Interrupt(void)

@@ -34,7 +34,10 @@ typedef void (*dspic30_adc_scan_callback)(void *context, const uint16_t *values,
 // Where a camera row read on the parallel port stands (the board's camera).
 typedef enum dspic30_camera_phase {
     DSPIC30_CAMERA_IDLE,
-    DSPIC30_CAMERA_WAITING_FOR_FRAME,
+    DSPIC30_CAMERA_WAITING_FOR_FRAME, // for a blank between frames, to count rows from
+    DSPIC30_CAMERA_WAITING_FOR_ROW,   // rows counted, for the interrupt that reads the line
+    DSPIC30_CAMERA_ROW_READ,
+    DSPIC30_CAMERA_ROW_FAILED,
 } dspic30_camera_phase;
 
 struct hal_board {
@@ -59,8 +62,9 @@ struct hal_board {
     dspic30_callback edge_callback;
     void *edge_context;
 
-    // The camera row being read.
-    dspic30_camera_phase camera_phase;
+    // The camera row being read; the phase also changes in the interrupt
+    // that reads the row.
+    volatile dspic30_camera_phase camera_phase;
     uint16_t camera_row;
     uint8_t *camera_bytes;
     uint16_t camera_pixels;

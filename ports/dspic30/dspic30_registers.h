@@ -178,6 +178,7 @@
 #define DSPIC30_TRISG       0x02E4u
 #define DSPIC30_PORT_OFFSET 2u // PORTx = TRISx + 2
 #define DSPIC30_LAT_OFFSET  4u // LATx = TRISx + 4
+#define DSPIC30_PORTC       (DSPIC30_TRISC + DSPIC30_PORT_OFFSET)
 #define DSPIC30_PORTD       (DSPIC30_TRISD + DSPIC30_PORT_OFFSET)
 
 // --- access -----------------------------------------------------------------------------------

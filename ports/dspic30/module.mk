@@ -167,10 +167,12 @@ $(DSPIC30_OUT)/epuck-aseba.hex $(DSPIC30_OUT)/epuck-aseba-factory.hex &: \
 -include $(DSPIC30_APPLICATION_OBJECTS:.o=.d) $(DSPIC30_BOOTLOADER_OBJECTS:.o=.d)
 
 # Every file of the port and of the e-puck's board on it compiled where int
-# is 16 bits, warnings as errors; the DSP kernel needs XC16's DSP builtins
-# (its host test runs it against a model of them).
-DSPIC30_CHECK_SOURCES := $(filter-out ports/dspic30/dspic30_dsp_kernel.c,$(wildcard ports/dspic30/*.c)) \
-                         $(wildcard boards/epuck_dspic30/*.c) hal/hal_link_rings.c
+# is 16 bits, warnings as errors; not the two that are dsPIC assembly at
+# heart: the DSP kernel (its host test runs it against a model of the
+# engine) and the camera's timed row read (the arena's dsPIC robots run it).
+DSPIC30_ASSEMBLY_SOURCES := ports/dspic30/dspic30_dsp_kernel.c boards/epuck_dspic30/dspic30_camera_row.c
+DSPIC30_CHECK_SOURCES := $(filter-out $(DSPIC30_ASSEMBLY_SOURCES),$(wildcard ports/dspic30/*.c) \
+                         $(wildcard boards/epuck_dspic30/*.c)) hal/hal_link_rings.c
 DSPIC30_CHECK_FLAGS := -std=gnu99 -Os -ffreestanding -Wall -Wextra -Werror -Wshadow -Wundef \
                        -Wpointer-arith -mmcu=atmega1284p -I. -Ivm -Inative_functions \
                        -DDSPIC30_SIMULATED_REGISTERS $(DSPIC30_TARGET_CONFIG)

@@ -22,10 +22,9 @@ typedef void (*epuck_callback)(void *context);
 // --- periodic timers (the library's use, §3.13) --------------------------------------
 
 typedef enum epuck_timer {
-    EPUCK_TIMER_AGENDA,      // fast tick for the IR pulses, RC5 sampling, ...
     EPUCK_TIMER_MOTOR_LEFT,  // left stepper phases
     EPUCK_TIMER_MOTOR_RIGHT, // right stepper phases
-    EPUCK_TIMER_SPARE,
+    EPUCK_TIMER_SPARE,       // the remote's RC5 sampling
     EPUCK_TIMER_COUNT
 } epuck_timer;
 

@@ -15,3 +15,21 @@ void (*volatile const application_handlers[])(void) = {
     _T1Interrupt, _U1RXInterrupt, _U1TXInterrupt, _T2Interrupt,   _T3Interrupt,
     _T4Interrupt, _T5Interrupt,   _ADCInterrupt,  _INT0Interrupt,
 };
+
+// The camera's timed row read is dsPIC assembly (dspic30_camera_row.c); on
+// the proxies' chips a loop of about its size stands for it.
+#include <stdbool.h>
+#include <stdint.h>
+
+bool dspic30_camera_read_row(uint8_t *bytes, uint16_t pixels, uint16_t polls);
+bool dspic30_camera_read_row(uint8_t *bytes, uint16_t pixels, uint16_t polls)
+{
+    volatile uint16_t *const port = (volatile uint16_t *)bytes;
+    while (polls-- > 0 && (*port & 8u) == 0)
+        ;
+    for (; pixels > 0; pixels--) {
+        *bytes++ = (uint8_t)(*port >> 8);
+        *bytes++ = (uint8_t)(*port >> 8);
+    }
+    return polls != 0;
+}

@@ -2,28 +2,33 @@
 // HREF and PCLK on RC4, RC3 and RC14, a byte on RD8..RD15, all as a
 // function of the chip's clock, the bytes given by the robot's world
 // (host_world.camera_byte). The world's camera answers a host board at
-// once; the chip has to catch the lines as it polls them, so here they run
-// on a timing of their own:
+// once; the chip has to catch the lines as they pass, so here they run on a
+// timing of their own:
 //
-// - a frame begins every frame_cycles: VSYNC active for vsync_cycles, then
-//   the window's rows one after the other;
-// - a row: HREF active for href_lead_cycles, then for its row_bytes bytes,
-//   then inactive for row_gap_cycles;
-// - a byte: byte_cycles long, PCLK at the inactive level for the first
-//   half, at the latching level for the second, the byte on the data lines
-//   the whole time.
+// - a frame is frame_rows rows: first the vertical blank (blank_rows rows,
+//   VSYNC inactive, no HREF), then the window's `rows` rows, VSYNC active
+//   throughout (the PO3030K table's "VSYNC start and stop rows" are the
+//   window's first and last, §3.5);
+// - a row is row_cycles long: HREF active for its row_bytes bytes, then
+//   inactive for the rest (the horizontal blank);
+// - a byte is byte_cycles long, on the data lines the whole time; PCLK at
+//   the inactive level for the first half, at the latching level for the
+//   second.
 //
-// ⚠ The real camera's PCLK and frame rate under the firmware's register
-// settings are not in the sources read (§3.5): byte_cycles is chosen so that
-// the firmware's polling loop (dspic30_camera.c) sees every edge, as the
-// real one must; frame_cycles keeps a whole frame under the firmware's
-// 500 ms frame timeout. The firmware needs time between seeing HREF turn
-// active and watching PCLK (the end of its wait, entering its critical
-// section): with the first byte's PCLK low half right at HREF (64 cycles)
-// it missed that byte and read the row one byte late (every pixel's bytes
-// swapped); href_lead_cycles gives it that time, as the real camera must.
+// ⚠ The real camera's timing under the firmware's register settings is not
+// in the sources read. byte_cycles is the library's: its capture reads a
+// row with a loop of exactly 8 instruction cycles per byte, without PCLK
+// (§3.5), so that is the byte rate its register table gives. The frame and
+// row lengths follow the table's frame size (851 x 851 at VGA, a quarter
+// in QQVGA: 213 rows of 213 pixels, 426 bytes), which gives 20 frames a
+// second, near the 18.4 reported for the PO6030K.
+//
+// Timers counting HREF or VSYNC on their external clock pins (T4CK RC3,
+// T5CK RC4) see the rising edges through href_clock() and vsync_clock().
 
 #pragma once
+
+#include "tools/dspic30_sim/timers.hpp"
 
 #include <cstdint>
 
@@ -44,15 +49,15 @@ struct PixelPortLevels {
 class Dspic30PixelPort
 {
   public:
-    static constexpr uint64_t byte_cycles = 192;
+    static constexpr uint64_t byte_cycles = 8;
     static constexpr unsigned row_bytes = 240; // 120 pixels of RGB565
-    static constexpr unsigned rows = 120;      // the window (EPUCK_CAMERA_WINDOW_ROWS)
-    static constexpr uint64_t href_lead_cycles = 256;
-    static constexpr uint64_t row_gap_cycles = 512;
-    static constexpr uint64_t row_cycles =
-      href_lead_cycles + row_bytes * byte_cycles + row_gap_cycles;
-    static constexpr uint64_t vsync_cycles = 2048;
-    static constexpr uint64_t frame_cycles = vsync_cycles + rows * row_cycles + 4096;
+    static constexpr unsigned row_length_bytes = 426;
+    static constexpr uint64_t row_cycles = row_length_bytes * byte_cycles;
+    static constexpr unsigned rows = 120; // the window (EPUCK_CAMERA_WINDOW_ROWS)
+    static constexpr unsigned frame_rows = 213;
+    static constexpr unsigned blank_rows = frame_rows - rows;
+    static constexpr uint64_t blank_cycles = blank_rows * row_cycles;
+    static constexpr uint64_t frame_cycles = frame_rows * row_cycles;
 
     // The port of the camera `world` renders; `world` outlives the port.
     explicit Dspic30PixelPort(const host_world &world)
@@ -63,8 +68,39 @@ class Dspic30PixelPort
     // The lines' levels at `cycle` of the chip's clock.
     PixelPortLevels at(uint64_t cycle) const;
 
+    // HREF's and VSYNC's rising edges, for a timer's external clock.
+    const dspic30::ClockInput &href_clock() const
+    {
+        return href_edges_;
+    }
+    const dspic30::ClockInput &vsync_clock() const
+    {
+        return vsync_edges_;
+    }
+
   private:
+    // Rising edges `per_frame` times a frame, `spacing` cycles apart from
+    // `first` cycles into the frame.
+    class FrameEdges : public dspic30::ClockInput
+    {
+      public:
+        FrameEdges(uint64_t first, uint64_t spacing, uint64_t per_frame)
+          : first_(first)
+          , spacing_(spacing)
+          , per_frame_(per_frame)
+        {
+        }
+        uint64_t rising_edges(uint64_t from, uint64_t to) const override;
+        uint64_t rising_edge(uint64_t after, uint64_t n) const override;
+
+      private:
+        uint64_t edges_until(uint64_t cycle) const; // at or before `cycle`
+        uint64_t first_, spacing_, per_frame_;
+    };
+
     const host_world &world_;
+    const FrameEdges href_edges_{ blank_cycles, row_cycles, rows };
+    const FrameEdges vsync_edges_{ blank_cycles, frame_cycles, 1 };
 };
 
 } // namespace aseba::arena

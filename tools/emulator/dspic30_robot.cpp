@@ -29,6 +29,9 @@ constexpr std::array<PinPlace, EPUCK_PIN_COUNT> pin_places = [] {
 
 // The camera's data lines: the upper byte of port D (§3.5).
 constexpr unsigned camera_data_shift = 8;
+// The timers whose external clock pins HREF and VSYNC are wired to (§2.2).
+constexpr int camera_href_timer = 4;
+constexpr int camera_vsync_timer = 5;
 
 uint16_t bit_of(epuck_pin pin)
 {
@@ -103,6 +106,11 @@ Dspic30Robot::Dspic30Robot(const std::map<uint32_t, uint32_t> &image, const host
         return world_.adc_read(world_.context, uint8_t(channel), cycle);
     });
     chip_->i2c().connect(EPUCK_I2C_CAMERA_ADDRESS >> 1, *camera_bus_);
+    // HREF and VSYNC also reach the external clock inputs of Timers 4 and 5
+    // (T4CK RC3, T5CK RC4, §2.2), which the firmware may count them with.
+    // PCLK on T1CK (RC14) is not given to Timer1: no firmware counts it.
+    chip_->timers().connect_clock(camera_href_timer, &pixel_port_.href_clock());
+    chip_->timers().connect_clock(camera_vsync_timer, &pixel_port_.vsync_clock());
     for (char letter : { 'A', 'B', 'C', 'D', 'F', 'G' })
         sample_inputs(letter);
 }

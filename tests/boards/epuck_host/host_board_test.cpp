@@ -59,7 +59,7 @@ TEST_F(HostBoard, TimerFiresEveryPeriodAtTheRightCycle)
 {
     Recorder recorder{ board.get(), {} };
     Tag agenda{ &recorder, 0 };
-    ASSERT_TRUE(epuck_board_timer_start(board.get(), EPUCK_TIMER_AGENDA, 100, record, &agenda));
+    ASSERT_TRUE(epuck_board_timer_start(board.get(), EPUCK_TIMER_SPARE, 100, record, &agenda));
     host_board_advance(board.get(), uint64_t(FCY)); // one second
     // 100 µs is 1474.56 cycles, rounded to 1475 per period as the chip's
     // PR2 = 1474 does (§3.13): 9997 periods fit in a second.
@@ -67,7 +67,7 @@ TEST_F(HostBoard, TimerFiresEveryPeriodAtTheRightCycle)
     ASSERT_EQ(recorder.firings.size(), size_t(std::floor(FCY / period)));
     for (size_t k = 0; k < recorder.firings.size(); k += 997)
         EXPECT_EQ(recorder.firings[k].cycle, uint64_t((k + 1) * period)) << k;
-    epuck_board_timer_stop(board.get(), EPUCK_TIMER_AGENDA);
+    epuck_board_timer_stop(board.get(), EPUCK_TIMER_SPARE);
     size_t fired = recorder.firings.size();
     host_board_advance(board.get(), uint64_t(FCY));
     EXPECT_EQ(recorder.firings.size(), fired);
@@ -122,7 +122,7 @@ TEST_F(HostBoard, SetTimeFiresDueTimers)
 {
     Recorder recorder{ board.get(), {} };
     Tag tick{ &recorder, 0 };
-    ASSERT_TRUE(epuck_board_timer_start(board.get(), EPUCK_TIMER_AGENDA, 1000, record, &tick));
+    ASSERT_TRUE(epuck_board_timer_start(board.get(), EPUCK_TIMER_SPARE, 1000, record, &tick));
     host_board_set_time(board.get(), 10);
     // 1 ms is 14745.6 cycles, 14746 per period: 9 periods end before 10 ms.
     EXPECT_EQ(recorder.firings.size(), size_t(std::floor(0.010 * FCY / std::round(1e-3 * FCY))));

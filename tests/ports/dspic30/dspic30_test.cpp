@@ -422,21 +422,22 @@ TEST_F(Dspic30Firmware, BytesGoOnIntoTheNodeWhileItsFramesDrain)
     EXPECT_EQ(sent[3].second, expected);
 }
 
-TEST_F(Dspic30, AgendaTimerAt100MicrosecondsMatchesTheLibrary)
+// The right motor's timer is Timer2 (Timer4 counts the camera's rows).
+TEST_F(Dspic30, Timer2At100MicrosecondsMatchesTheLibrarysAgenda)
 {
     int calls = 0;
     auto count = [](void *context) { ++*static_cast<int *>(context); };
-    ASSERT_TRUE(epuck_board_timer_start(&board, EPUCK_TIMER_AGENDA, 100, count, &calls));
+    ASSERT_TRUE(epuck_board_timer_start(&board, EPUCK_TIMER_MOTOR_RIGHT, 100, count, &calls));
     // §3.13: the library's 0.1 ms agenda uses PR2 = 1474 at 1:1.
     EXPECT_EQ(chip.sfr(PR2), 1474);
     EXPECT_EQ(chip.sfr(T2CON), 0x8000);
     EXPECT_NE(chip.sfr(IEC0) & 0x0040, 0);
     EXPECT_TRUE(can_interrupt(chip, t2));
     chip.sfr(IFS0) |= 0x0040;
-    dspic30_on_timer(&board, EPUCK_TIMER_AGENDA);
+    dspic30_on_timer(&board, EPUCK_TIMER_MOTOR_RIGHT);
     EXPECT_EQ(calls, 1);
     EXPECT_EQ(chip.sfr(IFS0) & 0x0040, 0);
-    epuck_board_timer_stop(&board, EPUCK_TIMER_AGENDA);
+    epuck_board_timer_stop(&board, EPUCK_TIMER_MOTOR_RIGHT);
     EXPECT_EQ(chip.sfr(T2CON) & 0x8000, 0);
     EXPECT_EQ(chip.sfr(IEC0) & 0x0040, 0);
 }
@@ -449,9 +450,9 @@ TEST_F(Dspic30, MotorTimerPeriodsUseTheSmallestFittingPrescaler)
     for (uint32_t microseconds : { 20u, 1000u, 4000u, 25000u, 100000u, 1000000u }) {
         for (epuck_timer timer : { EPUCK_TIMER_MOTOR_LEFT, EPUCK_TIMER_MOTOR_RIGHT }) {
             ASSERT_TRUE(epuck_board_timer_start(&board, timer, microseconds, nullptr, nullptr));
-            // Left motor on Timer5, right on Timer4 (§3.6).
-            uint16_t control = chip.sfr(timer == EPUCK_TIMER_MOTOR_LEFT ? T5CON : T4CON);
-            uint16_t period = chip.sfr(timer == EPUCK_TIMER_MOTOR_LEFT ? PR5 : PR4);
+            // Left motor on Timer5, right on Timer2 (Timer4 is the camera's).
+            uint16_t control = chip.sfr(timer == EPUCK_TIMER_MOTOR_LEFT ? T5CON : T2CON);
+            uint16_t period = chip.sfr(timer == EPUCK_TIMER_MOTOR_LEFT ? PR5 : PR2);
             int code = field(control, 5, 4);
             EXPECT_EQ(control & 0x8000, 0x8000);
             EXPECT_EQ(control & 0x000A, 0); // 16-bit, internal clock
@@ -462,8 +463,9 @@ TEST_F(Dspic30, MotorTimerPeriodsUseTheSmallestFittingPrescaler)
             }
         }
     }
-    EXPECT_NE(chip.sfr(IEC1) & 0x0060, 0); // T4IE, T5IE
-    EXPECT_TRUE(can_interrupt(chip, t4));
+    EXPECT_NE(chip.sfr(IEC1) & 0x0040, 0); // T5IE
+    EXPECT_NE(chip.sfr(IEC0) & 0x0040, 0); // T2IE
+    EXPECT_TRUE(can_interrupt(chip, t2));
     EXPECT_TRUE(can_interrupt(chip, t5));
     EXPECT_FALSE(epuck_board_timer_start(&board, EPUCK_TIMER_SPARE, 2000000, nullptr, nullptr));
     EXPECT_FALSE(epuck_board_timer_start(&board, EPUCK_TIMER_SPARE, 1, nullptr, nullptr));
@@ -580,20 +582,114 @@ TEST_F(Dspic30, PortsFollowThePinMap)
     EXPECT_EQ(selector, 0b1010);
 }
 
-// A camera row is read in steps: while no frame begins, a step returns
-// after its polls, and the read fails once no frame came for half a second.
+// A camera row is read in steps that never wait: while no frame comes, a
+// step returns at once, and the read fails once nothing came for half a
+// second.
 TEST_F(Dspic30, CameraStepsNeverWaitForAFrame)
 {
     constexpr uint16_t PORTC = TRISC + 2;
-    chip.sfr(PORTC) = 0; // VSYNC (RC4, §3.5) inactive: no frame begins
-    uint8_t bytes[2 * EPUCK_CAMERA_PIXEL_BYTES] = {};
-    epuck_board_camera_start(&board, 10, bytes, 2);
-    for (int step = 0; step < 5; step++)
+    for (uint16_t vsync : { 0x0000, 0x0010 }) { // RC4 (§3.5): between frames, in one
+        chip.sfr(PORTC) = vsync;
+        uint8_t bytes[2 * EPUCK_CAMERA_PIXEL_BYTES] = {};
+        epuck_board_camera_start(&board, 10, bytes, 2);
+        for (int step = 0; step < 5; step++)
+            EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
+        for (int tick = 0; tick < 520; tick++) // Timer1 ticks of 1/1024 s: 508 ms
+            dspic30_on_clock_tick(&board);
+        EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED);
+        EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED); // until started again
+        EXPECT_EQ(chip.sfr(T4CON) & 0x8000, 0);
+    }
+}
+
+} // namespace
+
+// What the timed row read (dspic30_camera_row.c, dsPIC assembly) was asked,
+// and what it answers.
+static struct {
+    int calls = 0;
+    uint8_t *bytes = nullptr;
+    uint16_t pixels = 0;
+    bool answer = true;
+} row_read;
+
+extern "C" bool dspic30_camera_read_row(uint8_t *bytes, uint16_t pixels, uint16_t polls)
+{
+    (void)polls;
+    row_read.calls++;
+    row_read.bytes = bytes;
+    row_read.pixels = pixels;
+    return row_read.answer;
+}
+
+namespace
+{
+
+// §3.5, §2.2: between two frames (VSYNC inactive) a step sets Timer4
+// counting HREF's rising edges on T4CK (TCS, 1:1) to interrupt at the row
+// above the line (from 1 to PR4 = the line: the line-th edge), and not
+// while a frame passes; the interrupt, with HREF between two rows and
+// Timer4 having seen the line's edge only, reads the line once.
+TEST_F(Dspic30, CameraCountsRowsOnTimer4AndReadsTheLineInItsInterrupt)
+{
+    constexpr uint16_t PORTC = TRISC + 2, TMR4 = 0x0114;
+    EXPECT_LT(priority(chip, t4), priority(chip, u1rx)); // its wait lets UART1 in
+    uint8_t bytes[60 * EPUCK_CAMERA_PIXEL_BYTES] = {};
+
+    chip.sfr(PORTC) = 0x0010; // VSYNC active: a frame is passing
+    epuck_board_camera_start(&board, 32, bytes, 60);
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
+    EXPECT_EQ(chip.sfr(T4CON) & 0x8000, 0);
+
+    chip.sfr(PORTC) = 0x0000; // the blank between frames
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
+    EXPECT_EQ(chip.sfr(T4CON), 0x8002);
+    EXPECT_EQ(chip.sfr(PR4), 32);
+    EXPECT_EQ(chip.sfr(TMR4), 1);
+    EXPECT_NE(chip.sfr(IEC1) & 0x0020, 0);
+
+    row_read = {};
+    chip.sfr(TMR4) = 1; // the line's HREF edge after the match
+    dspic30_on_camera_row(&board);
+    EXPECT_EQ(row_read.calls, 1);
+    EXPECT_EQ(row_read.bytes, bytes);
+    EXPECT_EQ(row_read.pixels, 60);
+    EXPECT_EQ(chip.sfr(T4CON) & 0x8000, 0);
+    EXPECT_EQ(chip.sfr(IEC1) & 0x0020, 0);
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_DONE);
+
+    // Line 0 has no row above it: the line below is read.
+    epuck_board_camera_start(&board, 0, bytes, 60);
+    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
+    EXPECT_EQ(chip.sfr(PR4), 1);
+}
+
+// The interrupt came a row late (Timer4 saw two edges by the end of the
+// read), HREF never came, or the line was already passing: the read fails.
+TEST_F(Dspic30, CameraReadFailsWhenTheLineWasMissed)
+{
+    constexpr uint16_t PORTC = TRISC + 2, TMR4 = 0x0114;
+    uint8_t bytes[60 * EPUCK_CAMERA_PIXEL_BYTES] = {};
+    struct Case {
+        uint16_t tmr4;
+        bool answer;
+        uint16_t portc;
+        int calls;
+    };
+    for (Case c : { Case{ 2, true, 0x0000, 1 },
+                    Case{ 1, false, 0x0000, 1 },
+                    Case{ 1, true, 0x0008, 0 } }) { // RC3: HREF still active
+        chip.sfr(PORTC) = 0x0000;
+        epuck_board_camera_start(&board, 32, bytes, 60);
         EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_READING);
-    for (int tick = 0; tick < 520; tick++) // Timer1 ticks of 1/1024 s: 508 ms
-        dspic30_on_clock_tick(&board);
-    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED);
-    EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED); // until started again
+        row_read = {};
+        row_read.answer = c.answer;
+        chip.sfr(PORTC) = c.portc;
+        chip.sfr(TMR4) = c.tmr4;
+        dspic30_on_camera_row(&board);
+        EXPECT_EQ(row_read.calls, c.calls);
+        EXPECT_EQ(epuck_board_camera_step(&board), EPUCK_CAMERA_FAILED) << c.tmr4 << c.answer;
+    }
 }
 
 TEST_F(Dspic30, RemoteEdgesComeFromInt0)

@@ -5,12 +5,14 @@
 # simulator of tools/dspic30_sim (the harness image below).
 DSPIC30_TEST_GTEST_LDLIBS := -lgtest -lgtest_main -pthread
 
-# Every source of the port and of the board but the DSP kernel
-# (tests/native_functions_dsp), the run-time helpers (below) and the
-# bootloader image's entry point, built with the dsPIC target's
-# configuration and the simulated register mapping; the application's entry
-# point is renamed so that it does not clash with GoogleTest's.
-DSPIC30_TEST_SOURCES := $(filter-out ports/dspic30/dspic30_dsp_kernel.c ports/dspic30/dspic30_bootloader_main.c \
+# Every source of the port and of the board but the two written in dsPIC
+# assembly (the DSP kernel, tested in tests/native_functions_dsp; the
+# camera's timed row read, for which dspic30_test.cpp stands a function of
+# its own), the run-time helpers (below) and the bootloader image's entry
+# point, built with the dsPIC target's configuration and the simulated
+# register mapping; the application's entry point is renamed so that it
+# does not clash with GoogleTest's.
+DSPIC30_TEST_SOURCES := $(filter-out $(DSPIC30_ASSEMBLY_SOURCES) ports/dspic30/dspic30_bootloader_main.c \
                                      ports/dspic30/dspic30_runtime.c,\
                           $(wildcard ports/dspic30/*.c boards/epuck_dspic30/*.c)) hal/hal_link_rings.c
 $(foreach s,$(DSPIC30_TEST_SOURCES),\
