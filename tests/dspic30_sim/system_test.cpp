@@ -835,6 +835,41 @@ done:   bra done
     EXPECT_FALSE(unconnected.run_to("flagged"));
 }
 
+// Fact sheet §1.7, §2.5: INT0 is RF6; INTCON2.INT0EP = 1 makes its falling
+// edge set INT0IF (IFS0 bit 0), and with INT0IE the handler runs; a rising
+// edge does not, until INT0EP = 0 chooses it.
+TEST(Gpio, Int0OnTheEdgeIntcon2Chooses)
+{
+    Machine m(R"(
+start:  bset 0x0082, #0         ; INTCON2.INT0EP: falling edge
+        bset 0x008C, #0         ; IEC0.INT0IE
+idle:   bra idle
+int0:   inc w5, w5
+        bclr 0x0084, #0         ; IFS0.INT0IF
+        retfie
+)");
+    m.vector(8 + 0, "int0");
+    ASSERT_TRUE(m.run_to("idle"));
+    const auto settle = [&m]() {
+        for (int i = 0; i < 50; ++i)
+            m.cpu().run(m.cpu().cycles() + 1);
+    };
+    m.gpio().set_input_levels('F', 0x0040); // RF6 rises: not the chosen edge
+    settle();
+    EXPECT_EQ(m.cpu().w(5), 0);
+    m.gpio().set_input_levels('F', 0x0000); // falls
+    settle();
+    EXPECT_EQ(m.cpu().w(5), 1);
+    m.gpio().set_input_levels('F', 0x0000); // no edge
+    m.gpio().set_input_levels('F', 0x0001); // another pin
+    settle();
+    EXPECT_EQ(m.cpu().w(5), 1);
+    m.cpu().write_data(0x0082, 0); // INT0EP = 0: rising edge
+    m.gpio().set_input_levels('F', 0x0040);
+    settle();
+    EXPECT_EQ(m.cpu().w(5), 2);
+}
+
 // The I/O ports as the family reference manual's I/O Ports section gives
 // them, on the implemented bits of fact sheet §2.5 (p30F6014A.inc): after a
 // reset every pin is an input (TRIS all ones on implemented bits, 0

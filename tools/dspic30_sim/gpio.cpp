@@ -22,6 +22,12 @@ constexpr std::array<uint16_t, GpioPorts::port_count> implemented_bits = {
     0x01FF, // F: RF0-RF8
     0xF3CF, // G: RG0-RG3, RG6-RG9, RG12-RG15
 };
+// The external interrupt INT0 is RF6 (fact sheet §1.7, §2.5); INTCON2.INT0EP
+// chooses its edge: 1 falling, 0 rising.
+constexpr char int0_port = 'F';
+constexpr uint16_t int0_pin = 1u << 6;
+constexpr int int0_irq = 0;
+constexpr uint16_t int0_falling_edge = 1u << 0;
 
 } // namespace
 
@@ -47,7 +53,20 @@ int GpioPorts::index_of(char letter)
 void GpioPorts::set_input_levels(char letter, uint16_t levels)
 {
     Port &port = ports_.at(index_of(letter));
+    const uint16_t before = pins(letter);
     port.outside = levels & port.implemented;
+    if (letter == int0_port)
+        watch_int0(before, pins(letter));
+}
+
+void GpioPorts::watch_int0(uint16_t before, uint16_t after)
+{
+    if (!((before ^ after) & int0_pin))
+        return;
+    const bool falling = (before & int0_pin) != 0;
+    const bool on_falling = (cpu_.read_data(sfr::INTCON2) & int0_falling_edge) != 0;
+    if (falling == on_falling)
+        cpu_.raise_interrupt(int0_irq);
 }
 
 uint16_t GpioPorts::pins(char letter) const
@@ -86,6 +105,8 @@ void GpioPorts::write(uint16_t address, uint16_t value, uint16_t mask)
     else // PORTx and LATx both write the latch
         port.latch = merged(port.latch);
     const uint16_t after = pins(letter);
+    if (letter == int0_port)
+        watch_int0(before, after);
     if (pins_changed_ && after != before)
         pins_changed_(letter, before, after);
 }

@@ -10,7 +10,9 @@
 // (set_input_levels: 0 for every pin until then; the e-puck's selector on
 // RG6-RG9 then reads position 0), or asked of it at each read of a PORTx
 // (set_input_sampler), and the host may watch the pins the program drives
-// (set_pins_changed).
+// (set_pins_changed). An edge of RF6, the level the host sets or the latch
+// the program writes, raises INT0 when it is the edge INTCON2.INT0EP
+// chooses; the other external interrupts (INT1-INT4) are not modelled.
 
 #pragma once
 
@@ -64,6 +66,8 @@ class GpioPorts : public Peripheral
         uint16_t tris = 0, latch = 0, outside = 0;
     };
     static int index_of(char letter);
+    // Raises INT0 if RF6 went from `before` to `after` on its chosen edge.
+    void watch_int0(uint16_t before, uint16_t after);
 
     Cpu &cpu_;
     std::array<Port, port_count> ports_{};

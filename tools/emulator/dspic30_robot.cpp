@@ -2,6 +2,8 @@
 
 #include "dspic30_robot.hpp"
 
+#include <algorithm>
+
 #include <array>
 
 extern "C" {
@@ -154,11 +156,22 @@ void Dspic30Robot::pins_changed(char letter, uint16_t before, uint16_t after)
 
 dspic30::Outcome Dspic30Robot::run_until(uint64_t cycle)
 {
-    if (chip_->cpu().cycles() >= cycle)
-        return dspic30::Outcome::cycle_limit;
-    dspic30::RunLimits limits;
-    limits.cycles = cycle;
-    return chip_->run(limits).outcome;
+    // The chip stops at each change of the world's inputs, which then reach
+    // its pins at their own cycle: an edge on RF6 is INT0, the remote's.
+    while (chip_->cpu().cycles() < cycle) {
+        dspic30::RunLimits limits;
+        limits.cycles = cycle;
+        if (world_.next_input_change) {
+            const uint64_t change = world_.next_input_change(world_.context, chip_->cpu().cycles());
+            limits.cycles = std::min(cycle, std::max(change, chip_->cpu().cycles() + 1));
+        }
+        const dspic30::Outcome outcome = chip_->run(limits).outcome;
+        if (outcome != dspic30::Outcome::cycle_limit)
+            return outcome;
+        for (char letter : { 'F', 'G' })
+            sample_inputs(letter);
+    }
+    return dspic30::Outcome::cycle_limit;
 }
 
 void Dspic30Robot::receive(const uint8_t *bytes, size_t count)
