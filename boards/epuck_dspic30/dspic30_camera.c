@@ -5,15 +5,15 @@
 // 50 ms, and a main loop that watched the rows above the line go by moved
 // no byte of UART1's receive ring meanwhile: the ring holds 45 ms of the
 // link at 115,200 baud, and a burst of frames from another robot was lost
-// (docs/dspic30-sim.md, the camera finding). Instead, a main-loop step that
+// (docs/dspic30-sim.md, the finding on a second robot's traffic). Instead, a main-loop step that
 // sees the blank between two frames (VSYNC inactive: no row passes) starts
 // Timer4 counting HREF's rising edges, and Timer4 interrupts as the row
 // above the line begins. The interrupt waits for that row to end, with
-// UART1 and the ADC free to come in; then, with every interrupt masked, it
-// catches the line's HREF and reads the line at 8 cycles a byte
-// (dspic30_camera_row.c), as the library's capture does: the horizontal
-// blank and the line, about a quarter of a millisecond, less than UART1's
-// 4-byte FIFO holds.
+// UART1, the ADC and the timers free to come in; then, with every
+// interrupt masked, it catches the line's HREF and reads the line at 8
+// cycles a byte (dspic30_camera_row.c), as the library's capture does: the
+// horizontal blank and the line, about a quarter of a millisecond, less
+// than UART1's 4-byte FIFO holds.
 //
 // The interrupt comes at the start of the row above the line, so line 0
 // (with no row above it) is read as line 1: 1/120 of the picture lower.

@@ -12,16 +12,20 @@
 #define PRESCALER_COUNT         4u
 #define LARGEST_PRESCALE        256u
 
+#define NUMERATOR   DSPIC30_CYCLES_PER_US_NUMERATOR
+#define DENOMINATOR DSPIC30_CYCLES_PER_US_DENOMINATOR
+typedef char fraction_is_the_clock[(uint64_t)NUMERATOR * MICROSECONDS_PER_SECOND ==
+                                       (uint64_t)DSPIC30_FCY_HZ * DENOMINATOR
+                                     ? 1
+                                     : -1];
+typedef char prescales_divide_the_numerator[NUMERATOR % LARGEST_PRESCALE == 0 ? 1 : -1];
+// The longest period, in microseconds, each prescaler's 16-bit count holds:
+// below it, microseconds × NUMERATOR / prescale fits 32 bits.
+#define LONGEST_US(prescale)                                                                       \
+    ((uint32_t)((uint64_t)(TIMER_REGISTER_MAX + 1u) * (prescale)*DENOMINATOR / NUMERATOR))
 // The longest period the board promises fits the largest prescaler.
-typedef char longest_period_fits[(uint64_t)EPUCK_TIMER_MAX_PERIOD_US * DSPIC30_FCY_HZ <=
-                                     (uint64_t)(TIMER_REGISTER_MAX + 1u) * LARGEST_PRESCALE *
-                                       MICROSECONDS_PER_SECOND
-                                   ? 1
-                                   : -1];
-// counts_in's limits: periods of at most a second, and the instruction
-// clock a whole number of prescaled ticks per second.
-typedef char period_fits_counts_in[EPUCK_TIMER_MAX_PERIOD_US <= MICROSECONDS_PER_SECOND ? 1 : -1];
-typedef char clock_divides_by_prescales[DSPIC30_FCY_HZ % LARGEST_PRESCALE == 0 ? 1 : -1];
+typedef char
+  longest_period_fits[EPUCK_TIMER_MAX_PERIOD_US <= LONGEST_US(LARGEST_PRESCALE) ? 1 : -1];
 
 // The registers of one chip timer.
 typedef struct timer_registers {
@@ -62,23 +66,17 @@ static const timer_registers timer_map[EPUCK_TIMER_COUNT] = {
                             DSPIC30_SHIFT_T3 },
 };
 
-// Prescale of each TCKPS code.
+// Prescale of each TCKPS code, and the longest period each allows.
 static const uint16_t prescales[PRESCALER_COUNT] = { 1, 8, 64, LARGEST_PRESCALE };
+static const uint32_t longest_us[PRESCALER_COUNT] = { LONGEST_US(1),
+                                                      LONGEST_US(8),
+                                                      LONGEST_US(64),
+                                                      LONGEST_US(LARGEST_PRESCALE) };
 
-// round(microseconds * hz / 10^6) in 32-bit arithmetic, exactly: the
-// dsPIC has no 64-bit helpers (dspic30_runtime.c). With hz split into its
-// millions, thousands and units, microseconds * hz = whole * 10^6 +
-// thousands * 10^3 + units, and for microseconds <= 10^6 every part fits.
-static uint32_t counts_in(uint32_t microseconds, uint32_t hz)
-{
-    uint32_t whole = microseconds * (hz / MICROSECONDS_PER_SECOND);
-    uint32_t thousands = microseconds * (hz / 1000ul % 1000ul);
-    uint32_t units = microseconds * (hz % 1000ul);
-    return whole + thousands / 1000ul +
-           ((thousands % 1000ul) * 1000ul + units + MICROSECONDS_PER_SECOND / 2u) /
-             MICROSECONDS_PER_SECOND;
-}
-
+// One 32-bit division per start: a timer is started from interrupts too
+// (the remote's decoding restarts its timer at each step), and the exact
+// computation it replaced, several divisions by 10^6 per prescaler, took
+// half a millisecond there and made the remote's samples late.
 bool dspic30_timer_period(uint32_t period_microseconds,
                           uint16_t *period_register,
                           uint16_t *prescaler_code)
@@ -89,8 +87,12 @@ bool dspic30_timer_period(uint32_t period_microseconds,
         period_microseconds > EPUCK_TIMER_MAX_PERIOD_US)
         return false;
     for (code = 0; code < PRESCALER_COUNT; code++) {
+        uint32_t counts;
+        if (period_microseconds > longest_us[code])
+            continue;
         // Timer counts in the period, rounded to the nearest.
-        uint32_t counts = counts_in(period_microseconds, DSPIC30_FCY_HZ / prescales[code]);
+        counts =
+          (period_microseconds * (NUMERATOR / prescales[code]) + DENOMINATOR / 2u) / DENOMINATOR;
         if (counts >= DSPIC30_TIMER_PERIOD_OFFSET &&
             counts - DSPIC30_TIMER_PERIOD_OFFSET <= TIMER_REGISTER_MAX) {
             *period_register = (uint16_t)(counts - DSPIC30_TIMER_PERIOD_OFFSET);

@@ -44,6 +44,11 @@
 #define DSPIC30_PLL_FACTOR       8ul
 #define DSPIC30_CLOCKS_PER_CYCLE 4ul // FCY = Fosc / 4
 #define DSPIC30_FCY_HZ           (DSPIC30_CRYSTAL_HZ * DSPIC30_PLL_FACTOR / DSPIC30_CLOCKS_PER_CYCLE)
+// FCY in cycles per microsecond as a fraction in lowest terms (14.7456 =
+// 9216 / 625), so that a timer's period takes one 32-bit division
+// (dspic30_timers.c checks it against DSPIC30_FCY_HZ).
+#define DSPIC30_CYCLES_PER_US_NUMERATOR   9216ul
+#define DSPIC30_CYCLES_PER_US_DENOMINATOR 625ul
 
 // FOSC configuration word (§1.5): FCKSM = 10 (clock switching and fail-safe
 // monitor off), FOS = 111 (primary oscillator), FPR = 00110 (XT with PLL x8).
@@ -92,8 +97,9 @@
 #define DSPIC30_PRIORITY_TIMERS 4u
 #define DSPIC30_PRIORITY_REMOTE 4u
 // Timer4 counting the camera's rows: its interrupt waits for a row to end
-// (dspic30_camera.c), so below UART1, which comes in meanwhile.
-#define DSPIC30_PRIORITY_CAMERA 4u
+// (dspic30_camera.c), so below UART1 and the timers, which come in
+// meanwhile (the remote's samples have a third of a millisecond to spare).
+#define DSPIC30_PRIORITY_CAMERA 3u
 #define DSPIC30_PRIORITY_CLOCK  3u
 #define DSPIC30_PRIORITY_ALL    7u // the CPU priority that masks every source
 

@@ -306,6 +306,28 @@ TEST(Dspic30ArenaRobot, LinkKeepsUpWithTrafficWhileTheCameraIsReadAndTheDescript
     EXPECT_EQ(chip.node_id(), node) << "after the traffic, at " << chip.seconds() << " s";
 }
 
+// A TV remote's key reaches the chip as on a robot (§3.9): the receiver's
+// line on RF6 falls at the frame's first bit, INT0 (falling edge) starts
+// the firmware's RC5 sampling, and `rc5` holds the command sent.
+TEST(Dspic30ArenaRobot, RemoteKeyReachesTheFirmwareThroughInt0)
+{
+    ChipInArena chip(one_robot_arena());
+    chip.run_for(2.0); // past the bootloader's wait for a host (1 s)
+    const uint16_t node = chip.node_id();
+    ASSERT_NE(node, 0);
+    EXPECT_EQ(chip.variables(node, VARIABLE_INDEX(rc5), 1)[0], 0);
+    // Every command bit both ways, the toggle bit flipped at each key.
+    uint8_t toggle = 0;
+    for (uint8_t command : { 37, 12, 63, 42, 21, 1 }) {
+        aseba::arena::Rc5Frame frame;
+        frame.toggle = toggle ^= 1;
+        frame.command = command;
+        chip.world().send_rc5(0, frame);
+        chip.run_for(0.1); // 14 bits of 1.778 ms
+        EXPECT_EQ(chip.variables(node, VARIABLE_INDEX(rc5), 1)[0], command);
+    }
+}
+
 TEST(Dspic30ArenaRobot, LedsVariableLightsTheRingAsOnTheHostRobot)
 {
     const std::vector<int16_t> pattern = { 1, 0, 0, 32, 0, 7, 1, 0 };
