@@ -21,6 +21,7 @@
 #include "tests/arena/arena_test_support.hpp"
 #include "tools/client/messages.hpp"
 #include "tools/dspic30_sim/intel_hex.hpp"
+#include "tools/emulator/dspic30_arena.hpp"
 #include "tools/emulator/dspic30_robot.hpp"
 
 extern "C" {
@@ -381,6 +382,30 @@ TEST(Dspic30ArenaRobot, PaperAnnexDrivesAsOnTheHostRobot)
     std::vector<int16_t> speeds = chip.variables(node, VARIABLE_INDEX(left_speed), 2);
     EXPECT_GT(speeds[0], 0);
     EXPECT_GT(speeds[1], 0);
+}
+
+// `epuck-emu --dspic30 IMAGE --load FILE`: the arena sends the program to
+// every chip once its firmware runs (Dspic30Arena::load_at_start), and each
+// robot drives: the paper's controller moves all three of the default
+// arena's robots (each at least half of 12.8 cm/s over the 2.5 s after the
+// program's start, whatever it meets).
+TEST(Dspic30ArenaRobot, ArenaLoadsTheProgramIntoEveryChip)
+{
+    aseba::arena::Dspic30Arena arena(
+      default_arena(3), seed, aseba::dspic30::read_intel_hex_file(DSPIC30_FACTORY_HEX));
+    arena.load_at_start(arena_test::compile("examples/paper-annex.aesl"));
+    while (arena.seconds() < 1.6) // the program is sent at 1.5 s
+        arena.step();
+    std::vector<Pose> start;
+    for (size_t i = 0; i < 3; i++)
+        start.push_back(arena.world().pose(i));
+    while (arena.seconds() < 4.1)
+        arena.step();
+    for (size_t i = 0; i < 3; i++) {
+        Pose end = arena.world().pose(i);
+        EXPECT_GT(std::hypot(end.x - start[i].x, end.y - start[i].y), 0.5 * 12.8 * 2.5)
+          << "robot " << i + 1;
+    }
 }
 
 // The deepest the application's stack goes while the paper's controller

@@ -36,6 +36,11 @@ class Dspic30Arena
     Dspic30Arena(const Dspic30Arena &) = delete;
     Dspic30Arena &operator=(const Dspic30Arena &) = delete;
 
+    // Gives every robot `bytecode` (compiled for the e-puck) and runs it, as
+    // `aseba load` would, once its firmware has started: the chips keep no
+    // program of their own at power-on.
+    void load_at_start(std::vector<uint16_t> bytecode);
+
     // Advances everything by one world step (EnkiWorld::step_seconds).
     // Throws std::runtime_error when a chip stops (a trap storm, an illegal
     // instruction).
@@ -74,9 +79,12 @@ class Dspic30Arena
     };
 
     EnkiWorld world_;
+    void load_program();
+
     host::Network network_;
     std::vector<std::unique_ptr<Member>> robots_;
     uint64_t milliseconds_ = 0;
+    std::vector<uint16_t> program_; // for load_at_start, until it is sent
 };
 
 } // namespace aseba::arena

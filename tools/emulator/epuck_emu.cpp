@@ -300,7 +300,8 @@ Options parse_options(int argc, char **argv)
                   "bootloader and the application) instead of on the host board: the\n"
                   "real machine code, its sensors, motors and camera fed by the same\n"
                   "world (docs/dspic30-sim.md); node ids from the selector, robot i's\n"
-                  "turned to i-1 (ids 1..8); no --load, --memory, --robot-ports,\n"
+                  "turned to i-1 (ids 1..8); --load's program is sent to each robot\n"
+                  "once its firmware runs (1.5 s); no --memory, --robot-ports,\n"
                   "--control nor --arena-feed with it")
       ->type_name("FILE");
     bool headless = false; // there is no window to hide
@@ -509,14 +510,15 @@ void keep_pace(aseba::host::Network &network, double simulated, WallSeconds wall
         network.service(int(std::ceil((simulated - wall) * milliseconds_per_second)));
 }
 
-// The arena with every robot on a simulated dsPIC (dspic30_arena.hpp);
-// returns the exit status.
-int run_dspic30_arena(const Options &options, const aseba::arena::Arena &arena)
+// The arena with every robot on a simulated dsPIC (dspic30_arena.hpp),
+// running `bytecode` if there is one; returns the exit status.
+int run_dspic30_arena(const Options &options,
+                      const aseba::arena::Arena &arena,
+                      const std::vector<uint16_t> &bytecode)
 {
-    if (!options.load.empty() || !options.memory_folder.empty() || options.robot_ports != 0 ||
-        options.control_port != 0 || options.arena_feed != 0)
-        fail("--dspic30 takes no --load, --memory, --robot-ports, --control nor "
-             "--arena-feed");
+    if (!options.memory_folder.empty() || options.robot_ports != 0 || options.control_port != 0 ||
+        options.arena_feed != 0)
+        fail("--dspic30 takes no --memory, --robot-ports, --control nor --arena-feed");
     std::unique_ptr<aseba::arena::Dspic30Arena> simulation_owner;
     try {
         simulation_owner = std::make_unique<aseba::arena::Dspic30Arena>(
@@ -525,15 +527,19 @@ int run_dspic30_arena(const Options &options, const aseba::arena::Arena &arena)
         fail(error.what());
     }
     aseba::arena::Dspic30Arena &simulation = *simulation_owner;
+    if (!bytecode.empty())
+        simulation.load_at_start(bytecode);
     aseba::host::Network &network = simulation.network();
     reserve_descriptors(options, simulation.robot_count());
     open_port([&] { network.listen(options.port, options.listen_address); });
-    std::printf("epuck-emu: arena %s, %zu robot%s on simulated dsPIC30F6014A chips (%s) on "
+    std::printf("epuck-emu: arena %s, %zu robot%s on simulated dsPIC30F6014A chips (%s)%s%s on "
                 "tcp:port=%u%s, seed %u, %s speed\n",
                 options.arena.c_str(),
                 simulation.robot_count(),
                 simulation.robot_count() == 1 ? "" : "s",
                 options.dspic30_image.c_str(),
+                options.load.empty() ? "" : ", running ",
+                options.load.c_str(),
                 unsigned(options.port),
                 listen_note(options).c_str(),
                 unsigned(options.seed),
@@ -586,7 +592,7 @@ int run_arena(const Options &options,
         fail(error.what());
     }
     if (!options.dspic30_image.empty())
-        return run_dspic30_arena(options, arena);
+        return run_dspic30_arena(options, arena, bytecode);
     std::unique_ptr<aseba::arena::ArenaSimulation> simulation_owner;
     try {
         simulation_owner = std::make_unique<aseba::arena::ArenaSimulation>(
