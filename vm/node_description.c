@@ -22,11 +22,6 @@
 #define BYTE_MASK 0xFF
 #define BYTE_BITS 8
 
-static uint16_t native_count(const node_state *node)
-{
-    return node->vm.natives.natives != NULL ? node->vm.natives.count : 0;
-}
-
 // A native's packed description (vm.h) split into the parts of its message.
 typedef struct native_parts {
     const char *documentation; // NULL when it has none
@@ -123,6 +118,7 @@ void node_send_description(node_state *node)
     const node_description *description = node->description;
     const vm_memory *memory = &node->vm.memory;
     uint8_t length = node_string_length(description->name);
+    uint16_t native_count = vm_native_count(&node->vm.natives);
     uint16_t i;
 
     node_frame_begin(node, NODE_MSG_DESCRIPTION, (uint16_t)(1 + length + DESCRIPTION_FIXED_BYTES));
@@ -133,7 +129,7 @@ void node_send_description(node_state *node)
     node_frame_put_u16(node, memory->variables_size);
     node_frame_put_u16(node, description->variable_count);
     node_frame_put_u16(node, description->local_event_count);
-    node_frame_put_u16(node, native_count(node));
+    node_frame_put_u16(node, native_count);
     node_frame_end(node);
 
     for (i = 0; i < description->variable_count; i++) {
@@ -155,8 +151,8 @@ void node_send_description(node_state *node)
         node_frame_end(node);
     }
 
-    for (i = 0; i < native_count(node); i++)
-        send_native(node, &node->vm.natives.natives[i]);
+    for (i = 0; i < native_count; i++)
+        send_native(node, vm_native_at(&node->vm.natives, i));
 }
 
 // --- fingerprint -------------------------------------------------------------
@@ -205,9 +201,7 @@ uint16_t node_description_fingerprint(const node_description *description,
                                       uint16_t variables_size)
 {
     uint16_t crc = 0;
-    uint16_t count = description->natives != NULL && description->natives->natives != NULL
-                       ? description->natives->count
-                       : 0;
+    uint16_t count = description->natives != NULL ? vm_native_count(description->natives) : 0;
     uint16_t i;
     uint16_t j;
 
@@ -228,7 +222,7 @@ uint16_t node_description_fingerprint(const node_description *description,
     }
     for (i = 0; i < count; i++) {
         const char *words = description->natives->words;
-        const char *name = vm_native_name(&description->natives->natives[i]);
+        const char *name = vm_native_name(vm_native_at(description->natives, i));
         native_parts parts;
         const char *parameter;
 
