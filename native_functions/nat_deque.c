@@ -11,7 +11,8 @@
 //
 // The header is program data: a deque whose n or j is out of range (never
 // made by these functions) is refused with the same error, since upstream
-// would write outside the array.
+// would write outside the array. The module, at the end, lists the natives
+// in their standard order.
 
 #include <stddef.h>
 
@@ -192,7 +193,7 @@ static void erase_words(deque *queue, uint16_t index, uint16_t size)
 
 NATIVE(deque_size, 3, W_DEQUE "." W_SIZE, "report " W_SIZE W_OF W_DEST, P(N, W_DEQUE) P(1, W_SIZE));
 
-void nat_deque_size_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_size_function(vm_state *vm, const int16_t *arguments)
 {
     // Only n is read, so the array needs just that word, not a whole header.
     uint16_t length = nat_size_after(arguments, 2);
@@ -252,7 +253,7 @@ NATIVE(deque_get,
        W_FILL " " W_DEST W_FROM W_DEQUE " at " W_INDEX,
        P(N, W_DEQUE) P(M, W_DEST) P(1, W_INDEX));
 
-void nat_deque_get_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_get_function(vm_state *vm, const int16_t *arguments)
 {
     transfer_at_index(vm, arguments, false);
 }
@@ -263,7 +264,7 @@ NATIVE(deque_set,
        "copies " W_SRC W_TO W_DEQUE " at " W_INDEX,
        P(N, W_DEQUE) P(M, W_SRC) P(1, W_INDEX));
 
-void nat_deque_set_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_set_function(vm_state *vm, const int16_t *arguments)
 {
     transfer_at_index(vm, arguments, true);
 }
@@ -274,7 +275,7 @@ NATIVE(deque_insert,
        W_SHIFT " " W_DEQUE " at " W_INDEX W_BY "len(" W_SRC ")" W_AND W_INSERT " " W_SRC,
        P(N, W_DEQUE) P(M, W_SRC) P(1, W_INDEX));
 
-void nat_deque_insert_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_insert_function(vm_state *vm, const int16_t *arguments)
 {
     deque queue;
     int16_t *src;
@@ -295,7 +296,7 @@ NATIVE(deque_erase,
        W_SHIFT " " W_DEQUE " at " W_INDEX W_BY "len" W_TO W_ERASE,
        P(N, W_DEQUE) P(1, W_INDEX) P(1, "len"));
 
-void nat_deque_erase_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_erase_function(vm_state *vm, const int16_t *arguments)
 {
     deque queue;
     if (!open_deque(vm, arguments[0], arguments[3], &queue))
@@ -361,7 +362,7 @@ NATIVE(deque_push_front,
        W_INSERT " " W_SRC " before" W_THE W_FRONT W_OF W_DEQUE,
        P(N, W_DEQUE) P(M, W_SRC));
 
-void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_push_front_function(vm_state *vm, const int16_t *arguments)
 {
     push(vm, arguments, false);
 }
@@ -372,7 +373,7 @@ NATIVE(deque_push_back,
        W_INSERT " " W_SRC " after" W_THE W_BACK W_OF W_DEQUE,
        P(N, W_DEQUE) P(M, W_SRC));
 
-void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_push_back_function(vm_state *vm, const int16_t *arguments)
 {
     push(vm, arguments, true);
 }
@@ -383,7 +384,7 @@ NATIVE(deque_pop_front,
        W_FILL " " W_DEST W_FROM W_FRONT W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
        P(N, W_DEQUE) P(M, W_DEST));
 
-void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_pop_front_function(vm_state *vm, const int16_t *arguments)
 {
     pop(vm, arguments, false);
 }
@@ -394,7 +395,15 @@ NATIVE(deque_pop_back,
        W_FILL " " W_DEST W_FROM W_BACK W_OF W_DEQUE " then " W_ERASE W_ELEMENT "s",
        P(N, W_DEQUE) P(M, W_DEST));
 
-void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments)
+static void nat_deque_pop_back_function(vm_state *vm, const int16_t *arguments)
 {
     pop(vm, arguments, true);
 }
+
+static const vm_native deque_natives[] = {
+    NAT_RECORD(deque_size),      NAT_RECORD(deque_get),       NAT_RECORD(deque_set),
+    NAT_RECORD(deque_insert),    NAT_RECORD(deque_erase),     NAT_RECORD(deque_push_front),
+    NAT_RECORD(deque_push_back), NAT_RECORD(deque_pop_front), NAT_RECORD(deque_pop_back),
+};
+
+const vm_native_module nat_deque_module = NAT_MODULE(deque_natives);

@@ -5,11 +5,11 @@
 // Portable C99 like the standard natives: no floating point, no allocation,
 // all arithmetic in fixed-width integers, every result rounded half up and
 // saturated to int16. A target lists them in its native table with
-// NAT_DSP_LIST, normally right after NAT_STANDARD_LIST. NAT_DSP_NAMES is
-// the module's one table, as NAT_STANDARD_NAMES for the standard natives;
-// each native's description is beside its body (nat_dsp_fft.c,
-// nat_dsp_filter.c, nat_dsp_correlation.c), with its format, which the
-// description strings say too:
+// NAT_DSP_MODULES, normally right after NAT_STANDARD_MODULES. As for the
+// standard natives, each file owns its module: each native's description
+// is beside its body, its record in the file's list at the end
+// (nat_dsp_fft.c, nat_dsp_filter.c, nat_dsp_correlation.c, in this
+// order), with its format, which the description strings say too:
 //   dsp.fft   in place, real/imag int16, size 8...128 power of two; each of
 //             the log2(N) stages halves (round half up): output X[k] / N.
 //             Twiddles Q15. Outputs saturate (only if |input| > 32767).
@@ -29,16 +29,14 @@
 #include "nat_standard.h"
 #include "vm.h"
 
-// The DSP natives by name, in their order: native NAME is nat_NAME_function
-// and nat_NAME_description, side by side, as for the standard natives.
-#define NAT_DSP_NAMES(X)                                                                           \
-    X(dsp_fft) X(dsp_mag) X(dsp_fir) X(dsp_iir) X(dsp_corr) X(dsp_conv) X(dsp_peak)
-NAT_DSP_NAMES(NAT_DECLARE)
+// The DSP natives' modules: dsp.fft and dsp.mag; dsp.fir and dsp.iir;
+// dsp.corr, dsp.conv and dsp.peak.
+extern const vm_native_module nat_dsp_fft_module;
+extern const vm_native_module nat_dsp_filter_module;
+extern const vm_native_module nat_dsp_correlation_module;
 
-// The DSP natives, as initialisers of an array of vm_native.
-#define NAT_DSP_LIST NAT_DSP_NAMES(NAT_LIST_ENTRY)
-
-// Number of entries of NAT_DSP_LIST.
-#define NAT_DSP_COUNT (0 NAT_DSP_NAMES(NAT_ONE))
+// The DSP modules in their order, as initialisers of an array of module
+// pointers.
+#define NAT_DSP_MODULES &nat_dsp_fft_module, &nat_dsp_filter_module, &nat_dsp_correlation_module,
 
 #endif

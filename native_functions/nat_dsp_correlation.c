@@ -6,6 +6,7 @@
 // engine), shifted right by the script's `shift` (rounded half up) and
 // saturated to int16. dest must not overlap a or b: the sums
 // read them after dest is partly written (memory stays safe either way).
+// The file's module (nat_dsp.h) is at its end.
 
 #include <stddef.h>
 
@@ -64,7 +65,7 @@ NATIVE(dsp_corr,
        "(" W_DEST ")/2; rounded, saturated",
        P(N, W_DEST) P(M, "a") P(P, "b") P(1, W_SHIFT));
 
-void nat_dsp_corr_function(vm_state *vm, const int16_t *arguments)
+static void nat_dsp_corr_function(vm_state *vm, const int16_t *arguments)
 {
     lagged_signals s;
     if (!fetch_lagged_signals(vm, arguments, &s))
@@ -92,7 +93,7 @@ NATIVE(dsp_conv,
        "(a)+" W_SIZE "(b)-1; rounded, saturated",
        P(N, W_DEST) P(M, "a") P(P, "b") P(1, W_SHIFT));
 
-void nat_dsp_conv_function(vm_state *vm, const int16_t *arguments)
+static void nat_dsp_conv_function(vm_state *vm, const int16_t *arguments)
 {
     lagged_signals s;
     if (!fetch_lagged_signals(vm, arguments, &s))
@@ -115,7 +116,7 @@ NATIVE(dsp_peak,
        W_INDEX W_AND W_VALUE W_OF "the first maximum" W_OF W_SRC,
        P(1, W_INDEX) P(1, W_VALUE) P(N, W_SRC));
 
-void nat_dsp_peak_function(vm_state *vm, const int16_t *arguments)
+static void nat_dsp_peak_function(vm_state *vm, const int16_t *arguments)
 {
     int16_t *outputs[2];
     if (!nat_spans(vm, arguments, 2, 1, outputs))
@@ -136,3 +137,11 @@ void nat_dsp_peak_function(vm_state *vm, const int16_t *arguments)
     *outputs[0] = (int16_t)best_index;
     *outputs[1] = best_value;
 }
+
+static const vm_native correlation_natives[] = {
+    NAT_RECORD(dsp_corr),
+    NAT_RECORD(dsp_conv),
+    NAT_RECORD(dsp_peak),
+};
+
+const vm_native_module nat_dsp_correlation_module = NAT_MODULE(correlation_natives);

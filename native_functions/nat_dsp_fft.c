@@ -6,6 +6,7 @@
 // outputs, so the transform computes X[k] / N: with inputs whose complex
 // magnitude stays below 32768 no butterfly can grow past the int16 range;
 // outputs are still saturated, for inputs with both parts near full scale.
+// The file's module (nat_dsp.h) is at its end.
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -86,7 +87,7 @@ NATIVE(dsp_fft,
        "2); each stage halves, so" W_THE "result is X/N; rounded half up, saturated",
        P(N, "real") P(N, "imag"));
 
-void nat_dsp_fft_function(vm_state *vm, const int16_t *arguments)
+static void nat_dsp_fft_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t size = nat_size_after(arguments, 2);
     if (!is_valid_fft_size(size)) {
@@ -155,7 +156,7 @@ NATIVE(dsp_mag,
        W_DEST " = floor(sqrt(real^2 + imag^2))" W_ELEMENT_BY_ELEMENT ", saturated to 32767",
        P(N, W_DEST) P(N, "real") P(N, "imag"));
 
-void nat_dsp_mag_function(vm_state *vm, const int16_t *arguments)
+static void nat_dsp_mag_function(vm_state *vm, const int16_t *arguments)
 {
     int16_t *spans[3];
     uint16_t length = nat_size_after(arguments, 3);
@@ -170,3 +171,10 @@ void nat_dsp_mag_function(vm_state *vm, const int16_t *arguments)
         spans[0][i] = magnitude > INT16_MAX ? INT16_MAX : (int16_t)magnitude;
     }
 }
+
+static const vm_native fft_natives[] = {
+    NAT_RECORD(dsp_fft),
+    NAT_RECORD(dsp_mag),
+};
+
+const vm_native_module nat_dsp_fft_module = NAT_MODULE(fft_natives);

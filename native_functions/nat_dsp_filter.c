@@ -4,6 +4,7 @@
 // the loop the dsPIC runs on its DSP engine), then round half up once and
 // saturate to int16: the result is the exact filter output, rounded, for
 // any number of taps, and clips instead of wrapping at the extremes.
+// The file's module (nat_dsp.h) is at its end.
 
 #include <stddef.h>
 
@@ -29,7 +30,7 @@ NATIVE(dsp_fir,
        " zero before its start), rounded, saturated; " W_DEST " may be " W_SRC,
        P(N, W_DEST) P(N, W_SRC) P(M, "coefficients"));
 
-void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments)
+static void nat_dsp_fir_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 3);
     uint16_t tap_count = nat_length(arguments[4]);
@@ -60,7 +61,7 @@ NATIVE(dsp_iir,
        "in Q14, state [x1 x2 y1 y2] kept between calls; rounded, saturated",
        P(N, W_DEST) P(N, W_SRC) P(5, "coefficients") P(4, "state"));
 
-void nat_dsp_iir_function(vm_state *vm, const int16_t *arguments)
+static void nat_dsp_iir_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 4);
     int16_t *signals[2];
@@ -101,3 +102,10 @@ void nat_dsp_iir_function(vm_state *vm, const int16_t *arguments)
     state_span[IIR_Y1] = y1;
     state_span[IIR_Y2] = y2;
 }
+
+static const vm_native filter_natives[] = {
+    NAT_RECORD(dsp_fir),
+    NAT_RECORD(dsp_iir),
+};
+
+const vm_native_module nat_dsp_filter_module = NAT_MODULE(filter_natives);

@@ -1,6 +1,6 @@
 // What the files of the standard natives share: the functions that fetch
-// arguments and the macros that write the natives' descriptions, beside
-// their bodies.
+// arguments, the macros that write the natives' descriptions, beside their
+// bodies, and the module of records at the end of each file.
 // Not for use outside native_functions/.
 
 #ifndef NAT_INTERNAL_H
@@ -79,9 +79,25 @@ void nat_elementwise(vm_state *vm,
 // One native's packed description, nat_<identifier>_description: its stack
 // words, those of bytecode.md §9 (parameters + size-0 parameters + distinct
 // templates; the tests check them for every entry), its name, documentation
-// and parameters (P(...) P(...)). Its function is nat_<identifier>_function.
+// and parameters (P(...) P(...)). Its function, beside it, is
+// nat_<identifier>_function. Both are static: the file's module (below)
+// is what the rest of the firmware sees, and a native left out of it is an
+// unused static, which the compiler reports.
 #define NATIVE(identifier, stack_words, name, documentation, parameters)                           \
-    const char nat_##identifier##_description[] =                                                  \
+    static const char nat_##identifier##_description[] =                                           \
       STACK_##stack_words name DOC documentation parameters
+
+// The record (vm_native) of the native defined with NATIVE(identifier, ...).
+#define NAT_RECORD(identifier)                                                                     \
+    {                                                                                              \
+        nat_##identifier##_function, nat_##identifier##_description                                \
+    }
+
+// A file's module (vm_native_module) over its array of records, which it
+// lists at its end in NATIVE_CALL order: the count follows the array.
+#define NAT_MODULE(records)                                                                        \
+    {                                                                                              \
+        records, sizeof records / sizeof records[0]                                                \
+    }
 
 #endif

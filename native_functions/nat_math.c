@@ -1,5 +1,7 @@
-// The arithmetic natives of the standard library (language.md §13.2):
-// element-wise vector operations, statistics, sorting and math.rand.
+// The math.* natives of the standard library (language.md §13.2, §13.3):
+// element-wise vector operations, statistics, sorting, the trigonometry and
+// square root of nat_trigonometry.c, and math.rand; and their module, in
+// their standard order (their ids), at the end.
 //
 // Arguments may overlap (the same variable passed twice, or slices of one
 // array): every loop reads the source elements of index i just before it
@@ -56,7 +58,7 @@ NATIVE(math_copy,
        "copies " W_SRC W_TO W_DEST W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC));
 
-void nat_math_copy_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_copy_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 1, identity);
 }
@@ -67,7 +69,7 @@ NATIVE(math_fill,
        W_FILL "s " W_DEST " with constant " W_VALUE,
        P(N, W_DEST) P(1, W_VALUE));
 
-void nat_math_fill_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_fill_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 2);
     int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], length);
@@ -87,7 +89,7 @@ NATIVE(math_addscalar,
        W_ADD " " W_SCALAR W_TO "each" W_ELEMENT W_OF W_SRC W_AND "store result" W_TO W_DEST,
        P(N, W_DEST) P(N, W_SRC) P(1, W_SCALAR));
 
-void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_addscalar_function(vm_state *vm, const int16_t *arguments)
 {
     int16_t *spans[2];
     uint16_t length = nat_size_after(arguments, 3);
@@ -108,7 +110,7 @@ NATIVE(math_add,
        W_ADD "s " W_SRC1 W_AND W_SRC2 ", " W_WRITE W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
-void nat_math_add_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_add_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, add);
 }
@@ -119,7 +121,7 @@ NATIVE(math_sub,
        "substracts " W_SRC2 W_FROM W_SRC1 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
-void nat_math_sub_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_sub_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, subtract);
 }
@@ -130,7 +132,7 @@ NATIVE(math_mul,
        "multiplies " W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
-void nat_math_mul_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_mul_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, multiply);
 }
@@ -168,7 +170,7 @@ NATIVE(math_div,
        "divides " W_SRC1 W_BY W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
-void nat_math_div_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_div_function(vm_state *vm, const int16_t *arguments)
 {
     divide_elementwise(vm, arguments, false);
 }
@@ -179,7 +181,7 @@ NATIVE(math_min,
        W_WRITE "s" W_THE "minimum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
-void nat_math_min_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_min_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, minimum);
 }
@@ -190,7 +192,7 @@ NATIVE(math_max,
        W_WRITE "s" W_THE "maximum" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST "," W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC1) P(N, W_SRC2));
 
-void nat_math_max_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_max_function(vm_state *vm, const int16_t *arguments)
 {
     nat_elementwise(vm, arguments, 2, maximum);
 }
@@ -201,7 +203,7 @@ NATIVE(math_clamp,
        "clamp " W_SRC W_TO "low/high bounds into " W_DEST "," W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, W_SRC) P(N, "low") P(N, "high"));
 
-void nat_math_clamp_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_clamp_function(vm_state *vm, const int16_t *arguments)
 {
     int16_t *spans[4];
     uint16_t length = nat_size_after(arguments, 4);
@@ -228,7 +230,7 @@ NATIVE(math_dot,
        W_WRITE "s" W_THE "dot product" W_OF W_SRC1 W_AND W_SRC2 W_TO W_DEST ", after a " W_SHIFT,
        P(1, W_DEST) P(N, W_SRC1) P(N, W_SRC2) P(1, W_SHIFT));
 
-void nat_math_dot_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_dot_function(vm_state *vm, const int16_t *arguments)
 {
     int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], 1);
     if (dest == NULL)
@@ -268,7 +270,7 @@ NATIVE(math_stat,
        W_PERFORMS "statistics on " W_SRC,
        P(N, W_SRC) P(1, "min") P(1, "max") P(1, "mean"));
 
-void nat_math_stat_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_stat_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 4);
     const int16_t *src = vm_variables(vm, (uint16_t)arguments[0], length);
@@ -305,7 +307,7 @@ NATIVE(math_argbounds,
        "get" W_THE "indices (argmin, argmax)" W_OF "the limit " W_VALUE "s" W_OF W_SRC,
        P(N, W_SRC) P(1, "argmin") P(1, "argmax"));
 
-void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 3);
     const int16_t *src = vm_variables(vm, (uint16_t)arguments[0], length);
@@ -336,7 +338,7 @@ void nat_math_argbounds_function(vm_state *vm, const int16_t *arguments)
 
 NATIVE(math_sort, 2, W_MATH "sort", "sort " W_ARRAY " in place", P(N, W_ARRAY));
 
-void nat_math_sort_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_sort_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 1);
     int16_t *array = vm_variables(vm, (uint16_t)arguments[0], length);
@@ -363,14 +365,107 @@ NATIVE(math_muldiv,
        W_PERFORMS W_DEST " = (a*b)/c in 32 bits" W_ELEMENT_BY_ELEMENT,
        P(N, W_DEST) P(N, "a") P(N, "b") P(N, "c"));
 
-void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_muldiv_function(vm_state *vm, const int16_t *arguments)
 {
     divide_elementwise(vm, arguments, true);
 }
 
+NATIVE(math_atan2,
+       4,
+       W_MATH "atan2",
+       W_PERFORMS W_DEST " = atan2(y,x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "y") P(N, "x"));
+
+static void nat_math_atan2_function(vm_state *vm, const int16_t *arguments)
+{
+    nat_elementwise(vm, arguments, 2, nat_atan2);
+}
+
+// nat_sin and nat_cos as element-wise operations (nat_internal.h).
+static int16_t sine_of(int16_t angle, int16_t same)
+{
+    (void)same;
+    return nat_sin(angle);
+}
+
+static int16_t cosine_of(int16_t angle, int16_t same)
+{
+    (void)same;
+    return nat_cos(angle);
+}
+
+NATIVE(math_sin,
+       3,
+       W_MATH "sin",
+       W_PERFORMS W_DEST " = sin(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+
+static void nat_math_sin_function(vm_state *vm, const int16_t *arguments)
+{
+    nat_elementwise(vm, arguments, 1, sine_of);
+}
+
+NATIVE(math_cos,
+       3,
+       W_MATH "cos",
+       W_PERFORMS W_DEST " = cos(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+
+static void nat_math_cos_function(vm_state *vm, const int16_t *arguments)
+{
+    nat_elementwise(vm, arguments, 1, cosine_of);
+}
+
+NATIVE(math_rot2,
+       3,
+       W_MATH "rot2",
+       "rotates v" W_OF "angle a" W_TO W_DEST,
+       P(2, W_DEST) P(2, "v") P(1, "a"));
+
+static void nat_math_rot2_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *vectors[2];
+    if (!nat_spans(vm, arguments, 2, 2, vectors))
+        return;
+    const int16_t *angle = vm_variables(vm, (uint16_t)arguments[2], 1);
+    if (angle == NULL)
+        return;
+    int16_t *dest = vectors[0];
+    // Everything is read before dest is written: they may overlap.
+    int32_t x = vectors[1][0];
+    int32_t y = vectors[1][1];
+    int32_t cosine = nat_cos(*angle);
+    int32_t sine = nat_sin(*angle);
+    // Each product is at most 2^30 in magnitude, so the sums fit in 32 bits.
+    dest[0] = nat_wrap((cosine * x - sine * y) >> NAT_SINE_FRACTION_BITS);
+    dest[1] = nat_wrap((cosine * y + sine * x) >> NAT_SINE_FRACTION_BITS);
+}
+
+NATIVE(math_sqrt,
+       3,
+       W_MATH "sqrt",
+       W_PERFORMS W_DEST " = sqrt(x)" W_ELEMENT_BY_ELEMENT,
+       P(N, W_DEST) P(N, "x"));
+
+static void nat_math_sqrt_function(vm_state *vm, const int16_t *arguments)
+{
+    int16_t *spans[2];
+    uint16_t length = nat_size_after(arguments, 2);
+    if (!nat_spans(vm, arguments, 2, length, spans))
+        return;
+    for (uint16_t i = 0; i < length; ++i) {
+        int16_t value = spans[1][i];
+        if (value < 0) {
+            vm_error_node_specific(vm, "Negative input to sqrt");
+            return;
+        }
+        spans[0][i] = nat_sqrt(value);
+    }
+}
+
 NATIVE(math_rand, 2, W_MATH "rand", W_FILL " " W_ARRAY " with random " W_VALUE "s", P(N, W_DEST));
 
-void nat_math_rand_function(vm_state *vm, const int16_t *arguments)
+static void nat_math_rand_function(vm_state *vm, const int16_t *arguments)
 {
     uint16_t length = nat_size_after(arguments, 1);
     int16_t *dest = vm_variables(vm, (uint16_t)arguments[0], length);
@@ -382,3 +477,15 @@ void nat_math_rand_function(vm_state *vm, const int16_t *arguments)
         dest[i] = (int16_t)vm->random_state;
     }
 }
+
+static const vm_native math_natives[] = {
+    NAT_RECORD(math_copy),      NAT_RECORD(math_fill), NAT_RECORD(math_addscalar),
+    NAT_RECORD(math_add),       NAT_RECORD(math_sub),  NAT_RECORD(math_mul),
+    NAT_RECORD(math_div),       NAT_RECORD(math_min),  NAT_RECORD(math_max),
+    NAT_RECORD(math_clamp),     NAT_RECORD(math_dot),  NAT_RECORD(math_stat),
+    NAT_RECORD(math_argbounds), NAT_RECORD(math_sort), NAT_RECORD(math_muldiv),
+    NAT_RECORD(math_atan2),     NAT_RECORD(math_sin),  NAT_RECORD(math_cos),
+    NAT_RECORD(math_rot2),      NAT_RECORD(math_sqrt), NAT_RECORD(math_rand),
+};
+
+const vm_native_module nat_math_module = NAT_MODULE(math_natives);

@@ -1,4 +1,4 @@
-// The standard natives' table, and the dictionary of the words their
+// The standard natives' table (their modules), and the dictionary of the words their
 // descriptions share. The descriptions (beside each native's body) give
 // names, documentation strings and parameters exactly as upstream sends
 // them (language.md §13.1), so that our nodes describe themselves like
@@ -14,6 +14,10 @@
 const char nat_words[] = NAT_WORD_LIST(NAT_WORD_TEXT);
 #undef NAT_WORD_TEXT
 
-static const vm_native standard_natives[NAT_STANDARD_COUNT] = { NAT_STANDARD_LIST };
+static const vm_native_module *const standard_modules[] = { NAT_STANDARD_MODULES };
 
-const vm_native_table nat_standard_table = { standard_natives, NAT_STANDARD_COUNT, nat_words };
+const vm_native_table nat_standard_table = {
+    standard_modules,
+    sizeof standard_modules / sizeof standard_modules[0],
+    nat_words,
+};

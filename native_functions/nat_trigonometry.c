@@ -1,19 +1,17 @@
-// Integer trigonometry and square root (language.md §13.3) and the natives
-// built on them. The algorithms and tables reproduce upstream Aseba bit for
-// bit, which programs observe, so they are data rather than a formula.
+// Integer trigonometry and square root (language.md §13.3), which the
+// math.* natives (nat_math.c) apply element by element. The algorithms and tables reproduce
+// upstream Aseba bit for bit, which programs observe, so they are data rather than a formula.
 //
 // Angles: int16 where 32768 is pi. Sines: 1.15 fixed point.
 
 #include <stddef.h>
 
 #include "nat_internal.h"
-#include "nat_words.h"
 #include "nat_standard.h"
 
-#define QUARTER_TURN       16384 // pi/2
-#define HALF_TURN          32768 // pi, one more than INT16_MAX
-#define SINE_ONE           32767 // sin(pi/2)
-#define SINE_FRACTION_BITS 15    // sines are 1.15 fixed point
+#define QUARTER_TURN 16384 // pi/2
+#define HALF_TURN    32768 // pi, one more than INT16_MAX
+#define SINE_ONE     32767 // sin(pi/2)
 
 // sin over a quarter turn, 129 entries: SINE[i] ~ 32767 sin(pi i / 256),
 // with upstream's corrections, so 128 steps of 128 angle units each. The
@@ -186,97 +184,4 @@ int16_t nat_sqrt(int16_t x)
         bit >>= 2;
     }
     return (int16_t)root;
-}
-
-NATIVE(math_atan2,
-       4,
-       W_MATH "atan2",
-       W_PERFORMS W_DEST " = atan2(y,x)" W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, "y") P(N, "x"));
-
-void nat_math_atan2_function(vm_state *vm, const int16_t *arguments)
-{
-    nat_elementwise(vm, arguments, 2, nat_atan2);
-}
-
-// nat_sin and nat_cos as element-wise operations (nat_internal.h).
-static int16_t sine_of(int16_t angle, int16_t same)
-{
-    (void)same;
-    return nat_sin(angle);
-}
-
-static int16_t cosine_of(int16_t angle, int16_t same)
-{
-    (void)same;
-    return nat_cos(angle);
-}
-
-NATIVE(math_sin,
-       3,
-       W_MATH "sin",
-       W_PERFORMS W_DEST " = sin(x)" W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, "x"));
-
-void nat_math_sin_function(vm_state *vm, const int16_t *arguments)
-{
-    nat_elementwise(vm, arguments, 1, sine_of);
-}
-
-NATIVE(math_cos,
-       3,
-       W_MATH "cos",
-       W_PERFORMS W_DEST " = cos(x)" W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, "x"));
-
-void nat_math_cos_function(vm_state *vm, const int16_t *arguments)
-{
-    nat_elementwise(vm, arguments, 1, cosine_of);
-}
-
-NATIVE(math_rot2,
-       3,
-       W_MATH "rot2",
-       "rotates v" W_OF "angle a" W_TO W_DEST,
-       P(2, W_DEST) P(2, "v") P(1, "a"));
-
-void nat_math_rot2_function(vm_state *vm, const int16_t *arguments)
-{
-    int16_t *vectors[2];
-    if (!nat_spans(vm, arguments, 2, 2, vectors))
-        return;
-    const int16_t *angle = vm_variables(vm, (uint16_t)arguments[2], 1);
-    if (angle == NULL)
-        return;
-    int16_t *dest = vectors[0];
-    // Everything is read before dest is written: they may overlap.
-    int32_t x = vectors[1][0];
-    int32_t y = vectors[1][1];
-    int32_t cosine = nat_cos(*angle);
-    int32_t sine = nat_sin(*angle);
-    // Each product is at most 2^30 in magnitude, so the sums fit in 32 bits.
-    dest[0] = nat_wrap((cosine * x - sine * y) >> SINE_FRACTION_BITS);
-    dest[1] = nat_wrap((cosine * y + sine * x) >> SINE_FRACTION_BITS);
-}
-
-NATIVE(math_sqrt,
-       3,
-       W_MATH "sqrt",
-       W_PERFORMS W_DEST " = sqrt(x)" W_ELEMENT_BY_ELEMENT,
-       P(N, W_DEST) P(N, "x"));
-
-void nat_math_sqrt_function(vm_state *vm, const int16_t *arguments)
-{
-    int16_t *spans[2];
-    uint16_t length = nat_size_after(arguments, 2);
-    if (!nat_spans(vm, arguments, 2, length, spans))
-        return;
-    for (uint16_t i = 0; i < length; ++i) {
-        int16_t value = spans[1][i];
-        if (value < 0) {
-            vm_error_node_specific(vm, "Negative input to sqrt");
-            return;
-        }
-        spans[0][i] = nat_sqrt(value);
-    }
 }

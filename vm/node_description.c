@@ -22,11 +22,6 @@
 #define BYTE_MASK 0xFF
 #define BYTE_BITS 8
 
-static uint16_t native_count(const node_state *node)
-{
-    return node->vm.natives.natives != NULL ? node->vm.natives.count : 0;
-}
-
 // A native's packed description (vm.h) split into the parts of its message.
 typedef struct native_parts {
     const char *documentation; // NULL when it has none
@@ -123,7 +118,7 @@ static void send_native(node_state *node, const vm_native *native)
 static uint16_t description_frame_count(const node_state *node)
 {
     return (uint16_t)(1u + node->description->variable_count +
-                      node->description->local_event_count + native_count(node));
+                      node->description->local_event_count + vm_native_count(&node->vm.natives));
 }
 
 // Sends the description's frame number `index` (0: DESCRIPTION).
@@ -144,7 +139,7 @@ static void send_description_frame(node_state *node, uint16_t index)
         node_frame_put_u16(node, memory->variables_size);
         node_frame_put_u16(node, description->variable_count);
         node_frame_put_u16(node, description->local_event_count);
-        node_frame_put_u16(node, native_count(node));
+        node_frame_put_u16(node, vm_native_count(&node->vm.natives));
         node_frame_end(node);
         return;
     }
@@ -170,7 +165,7 @@ static void send_description_frame(node_state *node, uint16_t index)
         return;
     }
     index = (uint16_t)(index - description->local_event_count);
-    send_native(node, &node->vm.natives.natives[index]);
+    send_native(node, vm_native_at(&node->vm.natives, index));
 }
 
 void node_start_description(node_state *node)
@@ -245,9 +240,7 @@ uint16_t node_description_fingerprint(const node_description *description,
                                       uint16_t variables_size)
 {
     uint16_t crc = 0;
-    uint16_t count = description->natives != NULL && description->natives->natives != NULL
-                       ? description->natives->count
-                       : 0;
+    uint16_t count = description->natives != NULL ? vm_native_count(description->natives) : 0;
     uint16_t i;
     uint16_t j;
 
@@ -268,7 +261,7 @@ uint16_t node_description_fingerprint(const node_description *description,
     }
     for (i = 0; i < count; i++) {
         const char *words = description->natives->words;
-        const char *name = vm_native_name(&description->natives->natives[i]);
+        const char *name = vm_native_name(vm_native_at(description->natives, i));
         native_parts parts;
         const char *parameter;
 

@@ -529,7 +529,8 @@ branch_false:
 
     VM_CASE(NATIVE_CALL)
     {
-        const vm_native *native = &vm->natives.natives[word & VM_OPERAND_MASK];
+        // The verifier let through only ids below the table's count.
+        const vm_native *native = vm_native_at(&vm->natives, word & VM_OPERAND_MASK);
         int16_t arguments[VM_MAX_NATIVE_ARGUMENTS];
         uint16_t count = vm_native_stack_words(native);
         uint16_t i;

@@ -12,6 +12,7 @@
 #define VM_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "vm_config.h"
@@ -94,19 +95,57 @@ static inline const char *vm_native_name(const vm_native *native)
 #define VM_NATIVE_TEXT_FIRST         0x20
 #define VM_NATIVE_WORD_FIRST         0x80
 
-// The natives a node exports, in NATIVE_CALL order; the same order is sent in
-// NATIVE_FUNCTION_DESCRIPTION messages. Tables are data: a target may chain
-// the standard natives after its own by listing both (nat_standard.h). The
-// records themselves, not pointers to them, so that a table costs no
-// pointer per native.
-typedef struct vm_native_table {
+// The natives of one module (a file of natives), in their NATIVE_CALL order
+// within it: the file lists its records at its end and counts them with
+// sizeof, so that a native is added in its own file alone.
+typedef struct vm_native_module {
     const vm_native *natives;
     uint16_t count;
+} vm_native_module;
+
+// The natives a node exports: its modules' natives one after the other, in
+// NATIVE_CALL order (a native's id is its place in that concatenation); the
+// same order is sent in NATIVE_FUNCTION_DESCRIPTION messages. Tables are
+// data: a target lists the modules it exports (robots/epuck/epuck_natives.c,
+// nat_standard.h). Modules, not one flat array, because C cannot gather
+// records from several files into one array; a call walks a handful of
+// modules (vm_native_at).
+typedef struct vm_native_table {
+    const vm_native_module *const *modules;
+    uint16_t module_count;
     // The words of the descriptions' bytes from VM_NATIVE_WORD_FIRST, in
     // order, each ended by a NUL, the last by two; NULL when those bytes
     // stand for themselves.
     const char *words;
 } vm_native_table;
+
+// Native `id` of `table`, or NULL when the table has fewer natives. Inline,
+// as vm_native_count: the VM's NATIVE_CALL finds its native here, and the
+// tests' stand-ins for the VM read tables without linking it.
+static inline const vm_native *vm_native_at(const vm_native_table *table, uint16_t id)
+{
+    uint16_t module;
+
+    for (module = 0; module < table->module_count; module++) {
+        const vm_native_module *natives = table->modules[module];
+
+        if (id < natives->count)
+            return &natives->natives[id];
+        id -= natives->count;
+    }
+    return NULL;
+}
+
+// The number of natives of `table`, its modules' together.
+static inline uint16_t vm_native_count(const vm_native_table *table)
+{
+    uint16_t count = 0;
+    uint16_t module;
+
+    for (module = 0; module < table->module_count; module++)
+        count += table->modules[module]->count;
+    return count;
+}
 
 // Where the text that starts at `text` in a packed description ends: at the
 // documentation mark, a parameter's size or the description's NUL.

@@ -84,10 +84,13 @@ static uint16_t opcode_of(uint16_t word)
 // Stack words the instruction starting with `word` pops.
 static uint16_t pops_of(const vm_state *vm, uint16_t word)
 {
-    uint16_t operand = word & VM_OPERAND_MASK;
+    const vm_native *native;
 
-    if (opcode_of(word) == VM_OP_NATIVE_CALL && operand < vm->natives.count)
-        return vm_native_stack_words(&vm->natives.natives[operand]);
+    if (opcode_of(word) == VM_OP_NATIVE_CALL) {
+        native = vm_native_at(&vm->natives, word & VM_OPERAND_MASK);
+        if (native != NULL)
+            return vm_native_stack_words(native);
+    }
     return opcode_shapes[opcode_of(word)] >> SHAPE_POPS_SHIFT & SHAPE_POPS_MASK;
 }
 
@@ -173,7 +176,7 @@ static const char *fault_at(const verifier *v, uint16_t pc, uint16_t depth)
             return vm_error_variables_bounds;
         break;
     case VM_OP_NATIVE_CALL:
-        if (operand >= vm->natives.count || pops > VM_MAX_NATIVE_ARGUMENTS)
+        if (vm_native_at(&vm->natives, operand) == NULL || pops > VM_MAX_NATIVE_ARGUMENTS)
             return vm_error_unknown_native;
         break;
     case VM_OP_INVALID: return vm_error_unknown_bytecode;

@@ -1,4 +1,4 @@
-// The e-puck's native table.
+// The e-puck's native table: the modules it exports, in NATIVE_CALL order.
 
 #include "epuck_natives.h"
 
@@ -6,10 +6,12 @@
 #include "native_functions/nat_standard.h"
 #include "native_functions/nat_words.h"
 
-static const vm_native epuck_native_list[] = { NAT_STANDARD_LIST NAT_DSP_LIST };
+// The e-puck has no natives of its own: a file of natives lists its module
+// here, before or after the libraries' (the order is the natives' ids).
+static const vm_native_module *const epuck_modules[] = { NAT_STANDARD_MODULES NAT_DSP_MODULES };
 
 const vm_native_table epuck_native_table = {
-    epuck_native_list,
-    sizeof(epuck_native_list) / sizeof(epuck_native_list[0]),
+    epuck_modules,
+    sizeof epuck_modules / sizeof epuck_modules[0],
     nat_words,
 };

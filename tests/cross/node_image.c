@@ -6,8 +6,10 @@
 #include "native_functions/nat_words.h"
 #include "vm/node.h"
 
-static const vm_native natives[] = { NAT_STANDARD_LIST };
-static const vm_native_table native_table = { natives, NAT_STANDARD_COUNT, nat_words };
+static const vm_native_module *const modules[] = { NAT_STANDARD_MODULES };
+static const vm_native_table native_table = { modules,
+                                              sizeof modules / sizeof modules[0],
+                                              nat_words };
 static const node_named_variable variables[] = { { "id", 1 }, { "source", 1 }, { "args", 32 } };
 static const node_local_event events[] = { { "tick", "a local event" } };
 static const node_description description = {

@@ -88,11 +88,11 @@ TEST_P(DequeModelTest, RandomOperationsMatchTheModel)
         const bool bad_index = index < 0 || index > capacity - 1;
         switch (operation) {
         case 0: // size
-            node.call(nat_deque_size, { deque_address, size_address, length_word });
+            node.call(standard_native("deque.size"), { deque_address, size_address, length_word });
             EXPECT_EQ(node.variables[size_address], n);
             break;
         case 1: // get
-            node.call(nat_deque_get,
+            node.call(standard_native("deque.get"),
                       { deque_address, tuple_address, index_address, length_word, tuple_word });
             if (bad_index)
                 expected_error = out_of_bounds(length, index);
@@ -102,7 +102,7 @@ TEST_P(DequeModelTest, RandomOperationsMatchTheModel)
                 expected_tuple.assign(model.begin() + index, model.begin() + index + tuple_size);
             break;
         case 2: // set
-            node.call(nat_deque_set,
+            node.call(standard_native("deque.set"),
                       { deque_address, tuple_address, index_address, length_word, tuple_word });
             if (bad_index)
                 expected_error = out_of_bounds(length, index);
@@ -112,7 +112,7 @@ TEST_P(DequeModelTest, RandomOperationsMatchTheModel)
                 std::copy(tuple.begin(), tuple.end(), model.begin() + index);
             break;
         case 3: // insert
-            node.call(nat_deque_insert,
+            node.call(standard_native("deque.insert"),
                       { deque_address, tuple_address, index_address, length_word, tuple_word });
             if (bad_index)
                 expected_error = out_of_bounds(length, index);
@@ -122,7 +122,7 @@ TEST_P(DequeModelTest, RandomOperationsMatchTheModel)
                 model.insert(model.begin() + index, tuple.begin(), tuple.end());
             break;
         case 4: // erase
-            node.call(nat_deque_erase,
+            node.call(standard_native("deque.erase"),
                       { deque_address, index_address, length_address, length_word });
             if (bad_index)
                 expected_error = out_of_bounds(length, index);
@@ -133,7 +133,8 @@ TEST_P(DequeModelTest, RandomOperationsMatchTheModel)
             break;
         case 5: // push_front
         case 6: // push_back
-            node.call(operation == 5 ? nat_deque_push_front : nat_deque_push_back,
+            node.call(operation == 5 ? standard_native("deque.push_front")
+                                     : standard_native("deque.push_back"),
                       { deque_address, tuple_address, length_word, tuple_word });
             if (tuple_size > capacity - n)
                 expected_error = out_of_bounds(length, n + tuple_size);
@@ -143,7 +144,8 @@ TEST_P(DequeModelTest, RandomOperationsMatchTheModel)
             break;
         case 7: // pop_front
         case 8: // pop_back
-            node.call(operation == 7 ? nat_deque_pop_front : nat_deque_pop_back,
+            node.call(operation == 7 ? standard_native("deque.pop_front")
+                                     : standard_native("deque.pop_back"),
                       { deque_address, tuple_address, length_word, tuple_word });
             if (tuple_size > n) {
                 expected_error = out_of_bounds(length, tuple_size);
@@ -189,7 +191,8 @@ TEST(Deque, InsertNearTheFrontMovesTheRightWords)
     node.put(deque_address, { 4, 0, 11, 22, 33, 44, 0, 0 });
     node.put(tuple_address, { 99 });
     node.put(index_address, { 1 });
-    node.call(nat_deque_insert, { deque_address, tuple_address, index_address, 8, 1 });
+    node.call(standard_native("deque.insert"),
+              { deque_address, tuple_address, index_address, 8, 1 });
     ASSERT_FALSE(node.stopped());
     EXPECT_EQ(decode(node, deque_address, 8), (std::deque<int16_t>{ 11, 99, 22, 33, 44 }));
 }
@@ -201,7 +204,7 @@ TEST(Deque, EraseOfNothingChangesNothing)
     node.put(index_address, { 0 });
     node.put(length_address, { 0 });
     const Words before = node.variables;
-    node.call(nat_deque_erase, { deque_address, index_address, length_address, 8 });
+    node.call(standard_native("deque.erase"), { deque_address, index_address, length_address, 8 });
     EXPECT_FALSE(node.stopped());
     EXPECT_EQ(node.variables, before);
 }
@@ -211,10 +214,10 @@ TEST(Deque, PhysicalLayoutFollowsTheSpecification)
     // Pushing to the front of an empty deque moves j back around the ring.
     OurNode node(memory_words);
     node.put(tuple_address, { 7, 8 });
-    node.call(nat_deque_push_front, { deque_address, tuple_address, 6, 2 });
+    node.call(standard_native("deque.push_front"), { deque_address, tuple_address, 6, 2 });
     EXPECT_EQ(node.get(deque_address, 6), (Words{ 2, 0, 7, 8, 0, 0 }));
     node.put(tuple_address, { 5 });
-    node.call(nat_deque_push_front, { deque_address, tuple_address, 6, 1 });
+    node.call(standard_native("deque.push_front"), { deque_address, tuple_address, 6, 1 });
     // Index 0 < n/2 = 1: the front moves back around the ring, j = 3.
     EXPECT_EQ(node.get(deque_address, 6), (Words{ 3, 3, 7, 8, 0, 5 }));
 }
@@ -235,7 +238,8 @@ TEST(Deque, MalformedDequesAreRefused)
         OurNode node(memory_words);
         node.put(deque_address, c.header);
         const Words before = node.variables;
-        node.call(nat_deque_push_back, { deque_address, tuple_address, c.length, 0 });
+        node.call(standard_native("deque.push_back"),
+                  { deque_address, tuple_address, c.length, 0 });
         EXPECT_TRUE(node.stopped());
         ASSERT_EQ(node.errors.size(), 1u);
         EXPECT_EQ(node.errors[0], out_of_bounds(static_cast<uint16_t>(c.length), c.reported_index));
@@ -243,15 +247,15 @@ TEST(Deque, MalformedDequesAreRefused)
     }
     // Capacity 0 is a deque that can only hold nothing.
     OurNode node(memory_words);
-    node.call(nat_deque_push_back, { deque_address, tuple_address, 2, 0 });
+    node.call(standard_native("deque.push_back"), { deque_address, tuple_address, 2, 0 });
     EXPECT_FALSE(node.stopped());
-    node.call(nat_deque_pop_front, { deque_address, tuple_address, 2, 0 });
+    node.call(standard_native("deque.pop_front"), { deque_address, tuple_address, 2, 0 });
     EXPECT_FALSE(node.stopped());
-    node.call(nat_deque_push_back, { deque_address, tuple_address, 2, 1 });
+    node.call(standard_native("deque.push_back"), { deque_address, tuple_address, 2, 1 });
     EXPECT_EQ(node.errors, std::vector<ErrorReport>{ out_of_bounds(2, 1) });
     // deque.size of an empty array has no n to read.
     OurNode empty(memory_words);
-    empty.call(nat_deque_size, { deque_address, size_address, 0 });
+    empty.call(standard_native("deque.size"), { deque_address, size_address, 0 });
     EXPECT_EQ(empty.errors, std::vector<ErrorReport>{ out_of_bounds(0, 0) });
 }
 
@@ -266,7 +270,8 @@ TEST(NativeRobustness, RandomArgumentsNeverMisbehave)
     std::uniform_int_distribution<int> coin(0, 3);
     OurNode node(64);
     for (int trial = 0; trial < 30000; ++trial) {
-        const vm_native &native = nat_standard_table.natives[trial % NAT_STANDARD_COUNT];
+        const vm_native &native =
+          *vm_native_at(&nat_standard_table, trial % vm_native_count(&nat_standard_table));
         for (auto &word : node.variables)
             word = static_cast<int16_t>(coin(random) == 0 ? any_word(random) : small_word(random));
         Words popped;

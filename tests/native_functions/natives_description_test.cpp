@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "our_node.hpp"
+#include "tests/support/native_table.hpp"
 
 extern "C" {
 #include <aseba/vm/natives.h>
@@ -92,10 +93,9 @@ TEST(NativeDescriptions, MatchTheSpecificationTable)
 {
     const auto rows = specification_table();
     ASSERT_EQ(rows.size(), 30u) << "could not read tests/native_functions/standard_natives.md";
-    ASSERT_EQ(nat_standard_table.count, NAT_STANDARD_COUNT);
-    ASSERT_EQ(rows.size(), nat_standard_table.count);
+    ASSERT_EQ(rows.size(), vm_native_count(&nat_standard_table));
     for (const Row &row : rows) {
-        const auto native = description_of(nat_standard_table.natives[row.id]);
+        const auto native = description_of(*vm_native_at(&nat_standard_table, row.id));
         EXPECT_EQ(native.name, row.name);
         EXPECT_EQ(native.description, row.description) << row.name;
         ASSERT_EQ(native.parameters.size(), row.parameters.size()) << row.name;
@@ -109,9 +109,9 @@ TEST(NativeDescriptions, MatchTheSpecificationTable)
 TEST(NativeDescriptions, MatchTheReferenceDescriptions)
 {
     const AsebaNativeFunctionDescription *reference[] = { ASEBA_NATIVES_STD_DESCRIPTIONS };
-    ASSERT_EQ(sizeof reference / sizeof reference[0], nat_standard_table.count);
-    for (uint16_t n = 0; n < nat_standard_table.count; ++n) {
-        const auto native = description_of(nat_standard_table.natives[n]);
+    ASSERT_EQ(sizeof reference / sizeof reference[0], vm_native_count(&nat_standard_table));
+    for (uint16_t n = 0; n < vm_native_count(&nat_standard_table); ++n) {
+        const auto native = description_of(*vm_native_at(&nat_standard_table, n));
         EXPECT_EQ(native.name, reference[n]->name);
         EXPECT_EQ(native.description, reference[n]->doc);
         size_t count = 0;
@@ -125,14 +125,12 @@ TEST(NativeDescriptions, MatchTheReferenceDescriptions)
     }
 }
 
-// Every native the project defines: the standard table, then the DSP list.
+// Every native the project defines: the standard modules, then the DSP ones.
 std::vector<vm_native> standard_and_dsp_natives()
 {
-    const vm_native dsp_natives[] = { NAT_DSP_LIST };
-    std::vector<vm_native> natives(nat_standard_table.natives,
-                                   nat_standard_table.natives + nat_standard_table.count);
-    natives.insert(natives.end(), std::begin(dsp_natives), std::end(dsp_natives));
-    return natives;
+    static const vm_native_module *const modules[] = { NAT_STANDARD_MODULES NAT_DSP_MODULES };
+    const vm_native_table table{ modules, uint16_t(std::size(modules)), nullptr };
+    return test_support::natives_of(table);
 }
 
 TEST(NativeDescriptions, StackWordsFollowTheCallingConvention)
@@ -184,14 +182,20 @@ TEST(NativeDescriptions, UseTheWordsOfTheDictionary)
     }
 }
 
-TEST(NativeDescriptions, ListMacroGivesTheTableOrder)
+// A native's id is its place in the concatenation of the table's modules:
+// the math module's 21, then the deque module's 9, and nothing after.
+TEST(NativeDescriptions, ModulesFollowOneAnotherInTheTable)
 {
-    const vm_native listed[] = { NAT_STANDARD_LIST };
-    ASSERT_EQ(sizeof listed / sizeof listed[0], static_cast<size_t>(NAT_STANDARD_COUNT));
-    for (int n = 0; n < NAT_STANDARD_COUNT; ++n) {
-        EXPECT_EQ(listed[n].function, nat_standard_table.natives[n].function);
-        EXPECT_EQ(listed[n].description, nat_standard_table.natives[n].description);
-    }
+    ASSERT_EQ(nat_math_module.count, 21);
+    ASSERT_EQ(nat_deque_module.count, 9);
+    ASSERT_EQ(vm_native_count(&nat_standard_table), 30);
+    for (uint16_t n = 0; n < 21; ++n)
+        EXPECT_EQ(vm_native_at(&nat_standard_table, n), &nat_math_module.natives[n]);
+    for (uint16_t n = 0; n < 9; ++n)
+        EXPECT_EQ(vm_native_at(&nat_standard_table, uint16_t(21 + n)),
+                  &nat_deque_module.natives[n]);
+    EXPECT_EQ(vm_native_at(&nat_standard_table, 30), nullptr);
+    EXPECT_EQ(vm_native_at(&nat_standard_table, 4095), nullptr);
 }
 
 } // namespace

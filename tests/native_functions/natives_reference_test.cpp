@@ -93,7 +93,7 @@ class MathReferenceTest : public ::testing::TestWithParam<int>
 TEST_P(MathReferenceTest, RandomCallsMatchTheReference)
 {
     const int id = GetParam();
-    const vm_native &native = nat_standard_table.natives[id];
+    const vm_native &native = *vm_native_at(&nat_standard_table, id);
     const auto description = description_of(native);
     const std::string name = description.name;
     const int parameter_count = int(description.parameters.size());
@@ -164,7 +164,7 @@ INSTANTIATE_TEST_SUITE_P(StandardMath,
                          ::testing::Range(0, 21),
                          [](const ::testing::TestParamInfo<int> &entry) {
                              std::string name =
-                               description_of(nat_standard_table.natives[entry.param]).name;
+                               description_of(*vm_native_at(&nat_standard_table, entry.param)).name;
                              std::replace(name.begin(), name.end(), '.', '_');
                              return name;
                          });
@@ -174,7 +174,7 @@ TEST(MathReference, RandContinuesTheReferenceSequence)
     AsebaSetRandomSeed(4321);
     OurNode ours(64);
     ours.vm.random_state = 4321;
-    ours.call(nat_math_rand, { 0, 64 });
+    ours.call(standard_native("math.rand"), { 0, 64 });
     for (int i = 0; i < 64; ++i)
         ASSERT_EQ(ours.variables[i], static_cast<int16_t>(AsebaGetRandom())) << i;
 }
@@ -227,7 +227,7 @@ TEST(DequeReference, RandomOperationsMatchTheReference)
         const int index = std::uniform_int_distribution<int>(-2, capacity + 1)(random);
         const int erase_length = std::uniform_int_distribution<int>(-1, capacity)(random);
         const int id = std::uniform_int_distribution<int>(21, 29)(random);
-        const vm_native &native = nat_standard_table.natives[id];
+        const vm_native &native = *vm_native_at(&nat_standard_table, id);
         const std::string name = description_of(native).name;
 
         Words memory(memory_words);

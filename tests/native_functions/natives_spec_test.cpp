@@ -156,10 +156,10 @@ TEST(NativeTrigonometry, VectorNativesApplyTheFunctionsElementwise)
     Words angles = { -32768, -16384, -1, 0, 1, 8192, 16384, 32767 };
     const auto size = static_cast<int16_t>(angles.size());
     node.put(100, angles);
-    node.call(nat_math_sin, { 0, 100, size });
-    node.call(nat_math_cos, { 20, 100, size });
+    node.call(standard_native("math.sin"), { 0, 100, size });
+    node.call(standard_native("math.cos"), { 20, 100, size });
     node.put(200, { 0, 1, 2, 3, 4, 99, 100, 32767 });
-    node.call(nat_math_sqrt, { 40, 200, size });
+    node.call(standard_native("math.sqrt"), { 40, 200, size });
     ASSERT_FALSE(node.stopped());
     for (size_t i = 0; i < angles.size(); ++i) {
         EXPECT_NEAR(node.variables[i], 32767 * std::sin(angle_radians(angles[i])), trig_tolerance);
@@ -170,7 +170,7 @@ TEST(NativeTrigonometry, VectorNativesApplyTheFunctionsElementwise)
 
     node.put(300, { 1, -1, 0, 0 });
     node.put(310, { 0, 0, 1, -1 });
-    node.call(nat_math_atan2, { 60, 300, 310, 4 });
+    node.call(standard_native("math.atan2"), { 60, 300, 310, 4 });
     EXPECT_EQ(node.get(60, 4), (Words{ 16384, -16384, 0, -32768 }));
 }
 
@@ -179,7 +179,7 @@ TEST(NativeTrigonometry, SqrtOfANegativeStopsAfterTheEarlierElements)
     OurNode node(memory_words);
     node.put(0, { 77, 77, 77, 77 });
     node.put(100, { 4, 9, -1, 16 });
-    node.call(nat_math_sqrt, { 0, 100, 4 });
+    node.call(standard_native("math.sqrt"), { 0, 100, 4 });
     EXPECT_TRUE(node.stopped());
     EXPECT_EQ(node.get(0, 4), (Words{ 2, 3, 77, 77 }));
     ASSERT_EQ(node.errors.size(), 1u);
@@ -199,7 +199,7 @@ TEST(NativeTrigonometry, Rot2RotatesLikeDoublePrecision)
         const int x = component(random), y = component(random), a = angle(random);
         node.put(2, { static_cast<int16_t>(x), static_cast<int16_t>(y) });
         node.put(4, { static_cast<int16_t>(a) });
-        node.call(nat_math_rot2, { 0, 2, 4 });
+        node.call(standard_native("math.rot2"), { 0, 2, 4 });
         const double c = std::cos(angle_radians(a)), s = std::sin(angle_radians(a));
         // Sines within 4/32767 give 2 x 10000 x 4/32767 < 2.5 units, the
         // scale 32767/32768 under 0.5 more, the floor under 1.
@@ -214,10 +214,10 @@ TEST(NativeTrigonometry, Rot2ReadsItsInputsBeforeWriting)
     OurNode plain(16), aliased(16);
     plain.put(2, { 1000, 2000 });
     plain.put(4, { 4096 });
-    plain.call(nat_math_rot2, { 0, 2, 4 });
+    plain.call(standard_native("math.rot2"), { 0, 2, 4 });
     aliased.put(2, { 1000, 2000 });
     aliased.put(4, { 4096 });
-    aliased.call(nat_math_rot2, { 2, 2, 4 });
+    aliased.call(standard_native("math.rot2"), { 2, 2, 4 });
     EXPECT_EQ(aliased.get(2, 2), plain.get(0, 2));
 }
 
@@ -225,25 +225,25 @@ TEST(NativeTrigonometry, Rot2ReadsItsInputsBeforeWriting)
 
 TEST(NativeMath, AddSubMulWrapLikeInt32Truncated)
 {
-    check_binary(nat_math_add, [](int64_t a, int64_t b) { return a + b; });
-    check_binary(nat_math_sub, [](int64_t a, int64_t b) { return a - b; });
-    check_binary(nat_math_mul, [](int64_t a, int64_t b) { return a * b; });
+    check_binary(standard_native("math.add"), [](int64_t a, int64_t b) { return a + b; });
+    check_binary(standard_native("math.sub"), [](int64_t a, int64_t b) { return a - b; });
+    check_binary(standard_native("math.mul"), [](int64_t a, int64_t b) { return a * b; });
 }
 
 TEST(NativeMath, MinMaxAreSigned)
 {
-    check_binary(nat_math_min, [](int64_t a, int64_t b) { return std::min(a, b); });
-    check_binary(nat_math_max, [](int64_t a, int64_t b) { return std::max(a, b); });
+    check_binary(standard_native("math.min"), [](int64_t a, int64_t b) { return std::min(a, b); });
+    check_binary(standard_native("math.max"), [](int64_t a, int64_t b) { return std::max(a, b); });
 }
 
 TEST(NativeMath, DivTruncatesTowardZeroAndWraps)
 {
     check_binary(
-      nat_math_div, [](int64_t a, int64_t b) { return a / b; }, true);
+      standard_native("math.div"), [](int64_t a, int64_t b) { return a / b; }, true);
     OurNode node(memory_words);
     node.put(100, { -7, 7, -32768 });
     node.put(200, { 2, -2, -1 });
-    node.call(nat_math_div, { 0, 100, 200, 3 });
+    node.call(standard_native("math.div"), { 0, 100, 200, 3 });
     EXPECT_EQ(node.get(0, 3), (Words{ -3, -3, -32768 }));
 }
 
@@ -253,7 +253,7 @@ TEST(NativeMath, DivByZeroStopsAfterTheEarlierElements)
     node.put(0, { -5, -5, -5, -5 });
     node.put(100, { 10, 20, 30, 40 });
     node.put(200, { 1, 2, 0, 4 });
-    node.call(nat_math_div, { 0, 100, 200, 4 });
+    node.call(standard_native("math.div"), { 0, 100, 200, 4 });
     EXPECT_TRUE(node.stopped());
     EXPECT_EQ(node.get(0, 4), (Words{ 10, 10, -5, -5 }));
     ASSERT_EQ(node.errors.size(), 1u);
@@ -276,7 +276,7 @@ TEST(NativeMath, MuldivUsesA32BitProduct)
     node.put(100, a);
     node.put(200, b);
     node.put(300, c);
-    node.call(nat_math_muldiv, { 0, 100, 200, 300, size });
+    node.call(standard_native("math.muldiv"), { 0, 100, 200, 300, size });
     ASSERT_FALSE(node.stopped());
     for (size_t i = 0; i < a.size(); ++i)
         EXPECT_EQ(node.variables[i], truncate(int64_t{ a[i] } * b[i] / c[i]))
@@ -284,7 +284,7 @@ TEST(NativeMath, MuldivUsesA32BitProduct)
 
     node.put(300, { 1, 0 });
     node.put(0, { 9, 9 });
-    node.call(nat_math_muldiv, { 0, 100, 200, 300, 2 });
+    node.call(standard_native("math.muldiv"), { 0, 100, 200, 300, 2 });
     EXPECT_TRUE(node.stopped());
     EXPECT_EQ(node.get(0, 2), (Words{ truncate(int64_t{ a[0] } * b[0]), 9 }));
     EXPECT_EQ(node.errors.back().kind, ErrorReport::Kind::division_by_zero);
@@ -302,7 +302,7 @@ TEST(NativeMath, ClampBoundsEachElement)
     node.put(100, src);
     node.put(200, low);
     node.put(300, high);
-    node.call(nat_math_clamp, { 0, 100, 200, 300, size });
+    node.call(standard_native("math.clamp"), { 0, 100, 200, 300, size });
     for (size_t i = 0; i < src.size(); ++i) {
         int16_t expected = src[i] > high[i] ? high[i] : src[i] < low[i] ? low[i] : src[i];
         EXPECT_EQ(node.variables[i], expected) << src[i] << " " << low[i] << " " << high[i];
@@ -313,15 +313,15 @@ TEST(NativeMath, CopyFillAddscalar)
 {
     OurNode node(memory_words);
     node.put(100, { 1, -2, 32767, -32768 });
-    node.call(nat_math_copy, { 0, 100, 4 });
+    node.call(standard_native("math.copy"), { 0, 100, 4 });
     EXPECT_EQ(node.get(0, 4), (Words{ 1, -2, 32767, -32768 }));
 
     node.put(10, { -9 });
-    node.call(nat_math_fill, { 20, 10, 3 });
+    node.call(standard_native("math.fill"), { 20, 10, 3 });
     EXPECT_EQ(node.get(20, 3), (Words{ -9, -9, -9 }));
 
     node.put(30, { 1 });
-    node.call(nat_math_addscalar, { 40, 100, 30, 4 });
+    node.call(standard_native("math.addscalar"), { 40, 100, 30, 4 });
     EXPECT_EQ(node.get(40, 4), (Words{ 2, -1, -32768, -32767 }));
 }
 
@@ -330,17 +330,17 @@ TEST(NativeMath, OverlappingArgumentsActLikeAForwardLoop)
     // copy(a[1:4], a[0:3]) propagates a[0].
     OurNode node(memory_words);
     node.put(0, { 5, 6, 7, 8, 9 });
-    node.call(nat_math_copy, { 1, 0, 4 });
+    node.call(standard_native("math.copy"), { 1, 0, 4 });
     EXPECT_EQ(node.get(0, 5), (Words{ 5, 5, 5, 5, 5 }));
 
     // addscalar reads the scalar once, even when dest overwrites it.
     node.put(0, { 1, 2, 3, 4 });
-    node.call(nat_math_addscalar, { 0, 0, 1, 4 });
+    node.call(standard_native("math.addscalar"), { 0, 0, 1, 4 });
     EXPECT_EQ(node.get(0, 4), (Words{ 3, 4, 5, 6 }));
 
     // add(a[1:], a, a): dest[i] = 2 src[i] with src[i] just written.
     node.put(0, { 1, 0, 0, 0 });
-    node.call(nat_math_add, { 1, 0, 0, 3 });
+    node.call(standard_native("math.add"), { 1, 0, 0, 3 });
     EXPECT_EQ(node.get(0, 4), (Words{ 1, 2, 4, 8 }));
 }
 
@@ -364,7 +364,8 @@ TEST(NativeMath, DotShiftsA32BitSum)
             node.put(100, a);
             node.put(200, b);
             node.put(300, { static_cast<int16_t>(shift) });
-            node.call(nat_math_dot, { 0, 100, 200, 300, static_cast<int16_t>(size) });
+            node.call(standard_native("math.dot"),
+                      { 0, 100, 200, 300, static_cast<int16_t>(size) });
             int64_t expected;
             if (shift > 32)
                 expected = 0;
@@ -381,25 +382,25 @@ TEST(NativeMath, StatGivesMinMaxAndTruncatedMean)
 {
     OurNode node(memory_words);
     node.put(100, { 3, -1, 7, 2 });
-    node.call(nat_math_stat, { 100, 0, 1, 2, 4 });
+    node.call(standard_native("math.stat"), { 100, 0, 1, 2, 4 });
     EXPECT_EQ(node.get(0, 3), (Words{ -1, 7, 2 }));
 
     node.put(100, { -3, -4 });
-    node.call(nat_math_stat, { 100, 0, 1, 2, 2 });
+    node.call(standard_native("math.stat"), { 100, 0, 1, 2, 2 });
     EXPECT_EQ(node.get(0, 3), (Words{ -4, -3, -3 }));
 
     node.put(100, { 32767, 32767, 32767 });
-    node.call(nat_math_stat, { 100, 0, 1, 2, 3 });
+    node.call(standard_native("math.stat"), { 100, 0, 1, 2, 3 });
     EXPECT_EQ(node.get(0, 3), (Words{ 32767, 32767, 32767 }));
 
     // Empty: nothing written.
     node.put(0, { 11, 12, 13 });
-    node.call(nat_math_stat, { 100, 0, 1, 2, 0 });
+    node.call(standard_native("math.stat"), { 100, 0, 1, 2, 0 });
     EXPECT_EQ(node.get(0, 3), (Words{ 11, 12, 13 }));
 
     // math.stat(v, m, m, m) leaves the mean in m.
     node.put(100, { 4, 8 });
-    node.call(nat_math_stat, { 100, 0, 0, 0, 2 });
+    node.call(standard_native("math.stat"), { 100, 0, 0, 0, 2 });
     EXPECT_EQ(node.variables[0], 6);
 }
 
@@ -407,20 +408,20 @@ TEST(NativeMath, ArgboundsKeepsFirstOccurrencesAndOnlyWritesUpdates)
 {
     OurNode node(memory_words);
     node.put(100, { 5, 1, 9, 1, 9 });
-    node.call(nat_math_argbounds, { 100, 0, 1, 5 });
+    node.call(standard_native("math.argbounds"), { 100, 0, 1, 5 });
     EXPECT_EQ(node.get(0, 2), (Words{ 1, 2 }));
 
     node.put(0, { -7, -7 });
     node.put(100, { 32767, 32767 });
-    node.call(nat_math_argbounds, { 100, 0, 1, 2 });
+    node.call(standard_native("math.argbounds"), { 100, 0, 1, 2 });
     EXPECT_EQ(node.get(0, 2), (Words{ -7, 0 }));
 
     node.put(0, { -7, -7 });
     node.put(100, { -32768, -32768 });
-    node.call(nat_math_argbounds, { 100, 0, 1, 2 });
+    node.call(standard_native("math.argbounds"), { 100, 0, 1, 2 });
     EXPECT_EQ(node.get(0, 2), (Words{ 0, -7 }));
 
-    node.call(nat_math_argbounds, { 100, 0, 1, 0 });
+    node.call(standard_native("math.argbounds"), { 100, 0, 1, 0 });
     EXPECT_EQ(node.get(0, 2), (Words{ 0, -7 }));
 }
 
@@ -438,7 +439,7 @@ TEST(NativeMath, SortMatchesStdSort)
             node.put(0, { 111 });
             node.put(1, array);
             node.put(1 + size, { 222 });
-            node.call(nat_math_sort, { 1, static_cast<int16_t>(size) });
+            node.call(standard_native("math.sort"), { 1, static_cast<int16_t>(size) });
             std::sort(array.begin(), array.end());
             EXPECT_EQ(node.get(1, size), array);
             EXPECT_EQ(node.variables[0], 111);
@@ -452,7 +453,7 @@ TEST(NativeMath, RandFollowsTheLinearCongruentialGenerator)
     uint32_t state = 1234;
     node.vm.random_state = static_cast<uint16_t>(state);
     for (int16_t size : { 5, 0, 17 }) {
-        node.call(nat_math_rand, { 0, size });
+        node.call(standard_native("math.rand"), { 0, size });
         for (int i = 0; i < size; ++i) {
             state = (25173 * state + 13849) % 65536;
             EXPECT_EQ(node.variables[i], static_cast<int16_t>(state));
@@ -473,7 +474,7 @@ TEST(NativeMath, SpansOutsideTheVariablesStopTheVmAndTouchNothing)
         for (size_t i = 0; i < node.variables.size(); ++i)
             node.variables[i] = static_cast<int16_t>(i);
         const Words before = node.variables;
-        node.call(nat_math_copy, popped);
+        node.call(standard_native("math.copy"), popped);
         EXPECT_TRUE(node.stopped());
         EXPECT_EQ(node.errors.size(), 1u);
         EXPECT_EQ(node.variables, before);
@@ -482,8 +483,8 @@ TEST(NativeMath, SpansOutsideTheVariablesStopTheVmAndTouchNothing)
 
 TEST(NativeMath, EveryTemplatedNativeDoesNothingForSizeZero)
 {
-    for (uint16_t n = 0; n < nat_standard_table.count; ++n) {
-        const vm_native &native = nat_standard_table.natives[n];
+    for (uint16_t n = 0; n < vm_native_count(&nat_standard_table); ++n) {
+        const vm_native &native = *vm_native_at(&nat_standard_table, n);
         const auto description = description_of(native);
         bool has_template = false;
         for (const auto &parameter : description.parameters)

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tools/compiler/target.hpp"
@@ -13,11 +14,9 @@ extern "C" {
 #include "vm.h"
 }
 
-// Each standard native's record by name (nat_math_copy, ...), to call one
-// alone: the library has only the list (nat_standard.h).
-#define OUR_NODE_RECORD(name) inline const vm_native nat_##name = NAT_RECORD(name);
-NAT_STANDARD_NAMES(OUR_NODE_RECORD)
-#undef OUR_NODE_RECORD
+// The standard native named `name` ("math.copy"), to call one alone: the
+// library exports only its modules (nat_standard.h).
+const vm_native &standard_native(std::string_view name);
 
 // What `native`, of the standard or DSP natives, says of itself: its packed
 // description expanded with their words (nat_words.h).

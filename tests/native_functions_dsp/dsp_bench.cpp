@@ -26,11 +26,11 @@ int main(int argc, char **argv)
     std::mt19937 generator(1);
     if (which == "fft") {
         node.put(0, random_words(generator, fft_size, -20000, 20000));
-        node.call(nat_dsp_fft, { 0, 128, fft_size });
+        node.call(dsp_native("dsp.fft"), { 0, 128, fft_size });
     } else if (which == "fir") {
         node.put(0, random_words(generator, fir_length));
         node.put(128, random_words(generator, fir_taps, -1000, 1000));
-        node.call(nat_dsp_fir, { 256, 0, 128, fir_length, fir_taps });
+        node.call(dsp_native("dsp.fir"), { 256, 0, 128, fir_length, fir_taps });
     } else {
         std::fprintf(stderr, "usage: bench-dsp fft|fir\n");
         return 2;

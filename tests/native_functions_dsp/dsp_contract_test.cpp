@@ -13,13 +13,17 @@
 namespace
 {
 
-const vm_native *const dsp_natives[] = { &nat_dsp_fft,  &nat_dsp_mag,  &nat_dsp_fir, &nat_dsp_iir,
-                                         &nat_dsp_corr, &nat_dsp_conv, &nat_dsp_peak };
+const vm_native *const dsp_natives[] = { &dsp_native("dsp.fft"),  &dsp_native("dsp.mag"),
+                                         &dsp_native("dsp.fir"),  &dsp_native("dsp.iir"),
+                                         &dsp_native("dsp.corr"), &dsp_native("dsp.conv"),
+                                         &dsp_native("dsp.peak") };
 constexpr size_t protocol_string_limit = 255; // one length byte (protocol.md §5)
 
 TEST(DspDescriptions, FitTheProtocolAndTheStackContract)
 {
-    ASSERT_EQ(std::size(dsp_natives), size_t(NAT_DSP_COUNT));
+    const vm_native_module *const modules[] = { NAT_DSP_MODULES };
+    const vm_native_table dsp{ modules, uint16_t(std::size(modules)), nullptr };
+    ASSERT_EQ(std::size(dsp_natives), size_t(vm_native_count(&dsp)));
     std::set<std::string> names;
     for (const vm_native *native : dsp_natives) {
         const auto description = description_of(*native);
@@ -121,7 +125,7 @@ TEST(DspHostileArguments, EmptyArraysWriteNothing)
         node.variables[300] = 0; // a valid shift for dsp.corr and dsp.conv
         const auto before = node.variables;
         node.call(*native, arguments);
-        if (native == &nat_dsp_fft) {
+        if (native == &dsp_native("dsp.fft")) {
             EXPECT_EQ(node.errors.size(), 1u);
         } else {
             EXPECT_TRUE(node.errors.empty()) << description.name;
@@ -166,12 +170,12 @@ TEST(DspThroughTheVm, CorrelationAndPeakWithTheStackOfBytecodeSpecification)
                     small_immediate(30),
                     small_immediate(20),
                     small_immediate(10),
-                    native_call(id_of(nat_dsp_corr)),
+                    native_call(id_of(dsp_native("dsp.corr"))),
                     small_immediate(5),
                     small_immediate(10),
                     small_immediate(42),
                     small_immediate(41),
-                    native_call(id_of(nat_dsp_peak)),
+                    native_call(id_of(dsp_native("dsp.peak"))),
                     stop });
     EXPECT_TRUE(node.errors.empty());
     EXPECT_EQ(node.vm.sp, -1);
@@ -189,7 +193,7 @@ TEST(DspThroughTheVm, FftOfAnImpulseIsFlatAndBadSizesReportTheCallPc)
     node.run_init({ small_immediate(8),
                     small_immediate(8),
                     small_immediate(0),
-                    native_call(id_of(nat_dsp_fft)),
+                    native_call(id_of(dsp_native("dsp.fft"))),
                     stop });
     EXPECT_TRUE(node.errors.empty());
     EXPECT_EQ(node.vm.sp, -1);
@@ -202,7 +206,7 @@ TEST(DspThroughTheVm, FftOfAnImpulseIsFlatAndBadSizesReportTheCallPc)
     refusing.run_init({ small_immediate(6),
                         small_immediate(8),
                         small_immediate(0),
-                        native_call(id_of(nat_dsp_fft)),
+                        native_call(id_of(dsp_native("dsp.fft"))),
                         stop });
     ASSERT_EQ(refusing.errors.size(), 1u);
     EXPECT_EQ(refusing.errors[0].kind, DspError::Kind::node_specific);

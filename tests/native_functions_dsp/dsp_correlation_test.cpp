@@ -75,10 +75,10 @@ TEST(DspCorrAndConv, EqualTheDirectSumsForEverySizeAndShift)
                     DspNode node(variables_size);
                     const auto a = random_words(generator, a_size);
                     const auto b = random_words(generator, b_size);
-                    EXPECT_EQ(run(node, nat_dsp_corr, a, b, dest_size, shift),
+                    EXPECT_EQ(run(node, dsp_native("dsp.corr"), a, b, dest_size, shift),
                               expected_correlation(a, b, dest_size, shift))
                       << a_size << " " << b_size << " " << dest_size << " " << shift;
-                    EXPECT_EQ(run(node, nat_dsp_conv, a, b, dest_size, shift),
+                    EXPECT_EQ(run(node, dsp_native("dsp.conv"), a, b, dest_size, shift),
                               expected_convolution(a, b, dest_size, shift))
                       << a_size << " " << b_size << " " << dest_size << " " << shift;
                     EXPECT_TRUE(node.errors.empty());
@@ -102,8 +102,8 @@ TEST(DspCorr, FindsTheDelayBetweenTwoNoisySignals)
         }
         DspNode node(variables_size);
         const size_t lags = 2 * length - 1;
-        run(node, nat_dsp_corr, a, b, lags, 10);
-        node.call(nat_dsp_peak, { 950, 951, dest_address, static_cast<int16_t>(lags) });
+        run(node, dsp_native("dsp.corr"), a, b, lags, 10);
+        node.call(dsp_native("dsp.peak"), { 950, 951, dest_address, static_cast<int16_t>(lags) });
         EXPECT_EQ(node.get(950, 1)[0] - int(lags / 2), delay);
     }
 }
@@ -112,13 +112,13 @@ TEST(DspCorrAndConv, SaturateAndRefuseShiftsOutside0To31)
 {
     DspNode node(variables_size);
     const Words high(64, INT16_MAX), low(64, INT16_MIN);
-    EXPECT_EQ(run(node, nat_dsp_corr, high, low, 3, 15), Words(3, INT16_MIN));
-    EXPECT_EQ(run(node, nat_dsp_conv, low, low, 3, 0), Words(3, INT16_MAX));
+    EXPECT_EQ(run(node, dsp_native("dsp.corr"), high, low, 3, 15), Words(3, INT16_MIN));
+    EXPECT_EQ(run(node, dsp_native("dsp.conv"), low, low, 3, 0), Words(3, INT16_MAX));
     // 64 * 2^30 >> 31 = 32: exact even at the widest sums.
-    EXPECT_EQ(run(node, nat_dsp_corr, low, low, 1, 31), Words(1, 32));
+    EXPECT_EQ(run(node, dsp_native("dsp.corr"), low, low, 1, 31), Words(1, 32));
     ASSERT_TRUE(node.errors.empty());
 
-    for (const vm_native *native : { &nat_dsp_corr, &nat_dsp_conv }) {
+    for (const vm_native *native : { &dsp_native("dsp.corr"), &dsp_native("dsp.conv") }) {
         for (int shift : { -1, 32, INT16_MIN, INT16_MAX }) {
             DspNode refusing(variables_size);
             run(refusing, *native, high, high, 3, shift);
@@ -138,19 +138,19 @@ TEST(DspPeak, GivesTheIndexAndValueOfTheFirstMaximum)
         DspNode node(variables_size);
         auto src = random_words(generator, size, -50, 50); // many ties
         node.put(a_address, src);
-        node.call(nat_dsp_peak, { 0, 1, a_address, static_cast<int16_t>(size) });
+        node.call(dsp_native("dsp.peak"), { 0, 1, a_address, static_cast<int16_t>(size) });
         const auto best = std::max_element(src.begin(), src.end()); // first of the largest
         EXPECT_EQ(node.get(0, 2), (Words{ static_cast<int16_t>(best - src.begin()), *best }));
     }
     // All equal, negative extremes: index 0.
     DspNode node(variables_size);
     node.put(a_address, Words(5, INT16_MIN));
-    node.call(nat_dsp_peak, { 0, 1, a_address, 5 });
+    node.call(dsp_native("dsp.peak"), { 0, 1, a_address, 5 });
     EXPECT_EQ(node.get(0, 2), (Words{ 0, INT16_MIN }));
 
     // The outputs inside src: the search reads src before writing.
     node.put(a_address, { 3, 9, 9, 1 });
-    node.call(nat_dsp_peak, { a_address + 1, a_address, a_address, 4 });
+    node.call(dsp_native("dsp.peak"), { a_address + 1, a_address, a_address, 4 });
     EXPECT_EQ(node.get(a_address, 2), (Words{ 9, 1 }));
 }
 

@@ -29,12 +29,14 @@ constexpr uint16_t local_event_base = 0xFFFE; // first local event (init is 0xFF
 aseba::TargetDescription epuck_with_dsp()
 {
     auto target = aseba::epuck_target();
-    const vm_native natives[] = { NAT_DSP_LIST };
-    EXPECT_EQ(target.native_functions.size(), size_t(NAT_STANDARD_COUNT + NAT_DSP_COUNT));
-    for (size_t i = 0; i < NAT_DSP_COUNT && NAT_STANDARD_COUNT + i < target.native_functions.size();
-         ++i)
-        EXPECT_EQ(target.native_functions[NAT_STANDARD_COUNT + i].name,
-                  description_of(natives[i]).name);
+    static const vm_native_module *const modules[] = { NAT_DSP_MODULES };
+    const vm_native_table dsp{ modules, uint16_t(std::size(modules)), nullptr };
+    const size_t standard_count = vm_native_count(&nat_standard_table);
+    const size_t dsp_count = vm_native_count(&dsp);
+    EXPECT_EQ(target.native_functions.size(), standard_count + dsp_count);
+    for (size_t i = 0; i < dsp_count && standard_count + i < target.native_functions.size(); ++i)
+        EXPECT_EQ(target.native_functions[standard_count + i].name,
+                  description_of(*vm_native_at(&dsp, uint16_t(i))).name);
     return target;
 }
 

@@ -5,8 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <stdexcept>
 
 #include "dsp_node.hpp"
+#include "tests/support/native_table.hpp"
 #include "tools/compiler/target_presets.hpp"
 
 extern "C" {
@@ -15,8 +18,20 @@ extern "C" {
 
 aseba::NativeFunction description_of(const vm_native &native)
 {
-    const vm_native list[] = { native };
-    return aseba::native_function(vm_native_table{ list, 1, nat_words }, 0);
+    const test_support::OneModuleTable table(&native, 1, nat_words);
+    return aseba::native_function(table, 0);
+}
+
+const vm_native &dsp_native(std::string_view name)
+{
+    static const vm_native_module *const modules[] = { NAT_DSP_MODULES };
+    static const vm_native_table table = { modules, uint16_t(std::size(modules)), nat_words };
+    for (uint16_t id = 0; id < vm_native_count(&table); ++id) {
+        const vm_native *native = vm_native_at(&table, id);
+        if (description_of(*native).name == name)
+            return *native;
+    }
+    throw std::invalid_argument("no DSP native " + std::string(name));
 }
 
 Words random_words(std::mt19937 &generator, size_t count, int low, int high)

@@ -14,7 +14,9 @@
 
 #include "dsp_node.hpp"
 
-extern "C" void nat_dsp_fft_truncating_mutant_function(vm_state *vm, const int16_t *arguments);
+// dsp_fft_truncating_mutant.c: nat_dsp_fft.c's module, dsp.fft compiled
+// with the fault.
+extern "C" const vm_native_module nat_dsp_fft_truncating_mutant_module;
 
 namespace
 {
@@ -29,15 +31,6 @@ struct Spectrum {
     Words imag;
     bool operator==(const Spectrum &) const = default;
 };
-
-// The FFT native under test: the real one or the deliberately faulty copy,
-// with dsp.fft's parameters and stack contract.
-vm_native fft_native(vm_native_function function)
-{
-    vm_native native = nat_dsp_fft;
-    native.function = function;
-    return native;
-}
 
 Spectrum run(const vm_native &fft, const Spectrum &input)
 {
@@ -161,7 +154,7 @@ std::vector<std::string> exact_mismatches(const vm_native &fft)
 
 TEST(DspFftExact, MatchesTheHandWorkedCasesAndTheModelBitForBit)
 {
-    for (const std::string &mismatch : exact_mismatches(nat_dsp_fft))
+    for (const std::string &mismatch : exact_mismatches(dsp_native("dsp.fft")))
         ADD_FAILURE() << mismatch;
 }
 
@@ -169,7 +162,7 @@ TEST(DspFftExact, MatchesTheHandWorkedCasesAndTheModelBitForBit)
 // through: a butterfly that truncates (dsp_fft_truncating_mutant.c).
 TEST(DspFftExact, CatchesAButterflyThatTruncatesInsteadOfRoundingHalfUp)
 {
-    const auto mismatches = exact_mismatches(fft_native(nat_dsp_fft_truncating_mutant_function));
+    const auto mismatches = exact_mismatches(nat_dsp_fft_truncating_mutant_module.natives[0]);
     EXPECT_FALSE(mismatches.empty()) << "the truncating butterfly passed every exact case";
     // The impulse, worked by hand, is enough on its own.
     EXPECT_TRUE(std::any_of(mismatches.begin(), mismatches.end(), [](const std::string &m) {

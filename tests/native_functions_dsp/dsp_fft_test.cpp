@@ -57,7 +57,7 @@ Spectrum run_fft(DspNode &node, const Words &real, const Words &imag)
     node.put(real_address, real);
     node.put(imag_address, imag);
     const auto size = static_cast<int16_t>(real.size());
-    node.call(nat_dsp_fft, { real_address, imag_address, size });
+    node.call(dsp_native("dsp.fft"), { real_address, imag_address, size });
     return { node.get(real_address, size), node.get(imag_address, size) };
 }
 
@@ -90,7 +90,7 @@ TEST(DspFft, PureToneOfEveryBinAndSizePeaksWithHalfItsAmplitude)
 
             // The magnitude spectrum peaks at the tone's bin (and its mirror)
             // with amplitude / 2: the tone splits between bins k and N - k.
-            node.call(nat_dsp_mag,
+            node.call(dsp_native("dsp.mag"),
                       { dest_address, real_address, imag_address, static_cast<int16_t>(size) });
             const auto magnitude = node.get(dest_address, size);
             int16_t index = -1, value = -1;
@@ -153,7 +153,8 @@ TEST(DspFft, SizesThatAreNotPowersOfTwoFrom8To128AreRefused)
         const Words real(8, 5), imag(8, 7);
         node.put(real_address, real);
         node.put(imag_address, imag);
-        node.call(nat_dsp_fft, { real_address, imag_address, static_cast<int16_t>(size) });
+        node.call(dsp_native("dsp.fft"),
+                  { real_address, imag_address, static_cast<int16_t>(size) });
         ASSERT_EQ(node.errors.size(), 1u) << size;
         EXPECT_EQ(node.errors[0].kind, DspError::Kind::node_specific);
         EXPECT_NE(node.errors[0].message.find("dsp.fft"), std::string::npos);
@@ -179,7 +180,7 @@ TEST(DspMag, IsTheFloorOfTheSquareRootSaturatedTo32767)
     DspNode node(variables_size + 200);
     node.put(real_address, real);
     node.put(imag_address, imag);
-    node.call(nat_dsp_mag,
+    node.call(dsp_native("dsp.mag"),
               { dest_address, real_address, imag_address, static_cast<int16_t>(size) });
     ASSERT_TRUE(node.errors.empty());
     const auto magnitude = node.get(dest_address, size);

@@ -2,8 +2,8 @@
 // it: native_functions/nat_dsp_fft.c compiled with its butterfly's halving
 // truncated (rounded down) instead of rounded half up, as documented. Only
 // the halving (a shift by 1) changes; the twiddle products (a shift by 15)
-// keep their rounding. Its functions and their descriptions (beside them in
-// nat_dsp_fft.c) are renamed so that it links beside the real ones.
+// keep their rounding. Its natives are static; its module is renamed so
+// that it links beside the real one.
 //
 // If nat_dsp_fft.c stops halving through nat_dsp_round_shift32(..., 1), this
 // file compiles the unchanged transform and the test that expects the fault
@@ -13,9 +13,6 @@
 
 #define nat_dsp_round_shift32(value, shift)                                                        \
     ((shift) == 1 ? (value) >> 1 : nat_dsp_round_shift32(value, shift))
-#define nat_dsp_fft_function    nat_dsp_fft_truncating_mutant_function
-#define nat_dsp_mag_function    nat_dsp_mag_truncating_mutant_function
-#define nat_dsp_fft_description nat_dsp_fft_truncating_mutant_description
-#define nat_dsp_mag_description nat_dsp_mag_truncating_mutant_description
+#define nat_dsp_fft_module nat_dsp_fft_truncating_mutant_module
 
 #include "native_functions/nat_dsp_fft.c"

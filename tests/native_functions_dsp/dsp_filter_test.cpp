@@ -41,7 +41,7 @@ Words run_fir(DspNode &node, const Words &src, const Words &taps, uint16_t dest 
 {
     node.put(src_address, src);
     node.put(coefficients_address, taps);
-    node.call(nat_dsp_fir,
+    node.call(dsp_native("dsp.fir"),
               { static_cast<int16_t>(dest),
                 src_address,
                 coefficients_address,
@@ -152,7 +152,7 @@ TEST(DspIir, ButterworthLowPassFollowsTheDoubleFilterAcrossCalls)
         for (int block = 0; block < 4; ++block) {
             const auto src = random_words(generator, 50, -16000, 16000);
             node.put(src_address, src);
-            node.call(nat_dsp_iir,
+            node.call(dsp_native("dsp.iir"),
                       { dest_address,
                         src_address,
                         coefficients_address,
@@ -179,7 +179,7 @@ TEST(DspIir, SaturatesAtBothExtremesAndFiltersInPlace)
     const Words src = { 30000, -30000, 16000, -16000, INT16_MAX, INT16_MIN, 0 };
     node.put(src_address, src);
     node.put(state_address, { 0, 0, 0, 0 });
-    node.call(nat_dsp_iir,
+    node.call(dsp_native("dsp.iir"),
               { src_address,
                 src_address,
                 coefficients_address,
@@ -198,7 +198,8 @@ TEST(DspIir, SaturatesAtBothExtremesAndFiltersInPlace)
     node.put(coefficients_address, wild);
     node.put(state_address, { INT16_MAX, INT16_MAX, INT16_MIN, INT16_MIN });
     node.put(src_address, { INT16_MAX });
-    node.call(nat_dsp_iir, { dest_address, src_address, coefficients_address, state_address, 1 });
+    node.call(dsp_native("dsp.iir"),
+              { dest_address, src_address, coefficients_address, state_address, 1 });
     const double sum = -32768.0 * 32767 * 3 - 32767.0 * -32768 * 2;
     EXPECT_EQ(node.get(dest_address, 1)[0], clamp_to_int16(round_half_up(sum, 14)));
 }

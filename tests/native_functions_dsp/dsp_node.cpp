@@ -48,9 +48,9 @@ void record_report(void *context, uint16_t type, const uint16_t *words, uint16_t
 const vm_callbacks recording_callbacks = { ignore_emit, record_report, record_node_specific };
 
 // The e-puck's order: standard natives first, then the DSP natives.
-const vm_native epuck_like_natives[] = { NAT_STANDARD_LIST NAT_DSP_LIST };
-const vm_native_table epuck_like_table = { epuck_like_natives,
-                                           NAT_STANDARD_COUNT + NAT_DSP_COUNT,
+const vm_native_module *const epuck_like_modules[] = { NAT_STANDARD_MODULES NAT_DSP_MODULES };
+const vm_native_table epuck_like_table = { epuck_like_modules,
+                                           uint16_t(std::size(epuck_like_modules)),
                                            nat_words };
 
 constexpr uint16_t init_event = 0xFFFF;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tools/compiler/target.hpp"
@@ -18,11 +19,9 @@ extern "C" {
 
 using Words = std::vector<int16_t>;
 
-// Each DSP native's record by name (nat_dsp_fft, ...), to call one alone:
-// the library has only the list (nat_dsp.h).
-#define DSP_NODE_RECORD(name) inline const vm_native nat_##name = NAT_RECORD(name);
-NAT_DSP_NAMES(DSP_NODE_RECORD)
-#undef DSP_NODE_RECORD
+// The DSP native named `name` ("dsp.fft"), to call one alone: the library
+// exports only its modules (nat_dsp.h).
+const vm_native &dsp_native(std::string_view name);
 
 // What `native`, of the standard or DSP natives, says of itself: its packed
 // description expanded with their words (nat_words.h).
@@ -42,7 +41,7 @@ class DspNode
     // The pc the VM is at when a direct call runs the NATIVE_CALL.
     static constexpr uint16_t call_pc = 123;
     // NATIVE_CALL id of the first DSP native in this node's table.
-    static constexpr uint16_t first_dsp_id = NAT_STANDARD_COUNT;
+    static inline const uint16_t first_dsp_id = vm_native_count(&nat_standard_table);
 
     // `args_size` words of `args` at VM_NAMED_ARGS receive event payloads.
     explicit DspNode(uint16_t variables_size,

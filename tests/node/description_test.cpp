@@ -8,6 +8,7 @@
 
 #include <cstring>
 
+#include "tests/support/native_table.hpp"
 #include "tools/compiler/target_presets.hpp"
 
 extern "C" {
@@ -120,12 +121,13 @@ TEST(NodeDescription, SendsAllPartsInOrder)
 {
     Harness harness(preset("refnode"), 1);
     harness.feed(get_node_description(1));
-    ASSERT_EQ(harness.frames.size(), 1u + 5 + 1 + NAT_STANDARD_COUNT);
+    const uint16_t native_count = vm_native_count(&nat_standard_table);
+    ASSERT_EQ(harness.frames.size(), 1u + 5 + 1 + native_count);
     EXPECT_EQ(type_of(harness.frames[0]), 0x9000);
     for (size_t i = 1; i <= 5; i++)
         EXPECT_EQ(type_of(harness.frames[i]), 0x9001);
     EXPECT_EQ(type_of(harness.frames[6]), 0x9002);
-    for (size_t i = 0; i < NAT_STANDARD_COUNT; i++) {
+    for (size_t i = 0; i < native_count; i++) {
         const Bytes &frame = harness.frames[7 + i];
         EXPECT_EQ(type_of(frame), 0x9003);
         // Natives in NATIVE_CALL order: the name comes first.
@@ -181,7 +183,7 @@ struct LongStrings {
     vm_native natives[3] = { { nullptr, cut.c_str() },
                              { nullptr, too_long.c_str() },
                              { nullptr, many.c_str() } };
-    vm_native_table table{ natives, 3, nullptr };
+    test_support::OneModuleTable table{ natives, 3 };
     node_named_variable variables[3];
     node_local_event events[1];
     node_description description{};
@@ -192,7 +194,7 @@ struct LongStrings {
         variables[1] = { "source", 1 };
         variables[2] = { utf8_name.c_str(), 4 };
         events[0] = { long_name.c_str(), long_text.c_str() };
-        description = { long_name.c_str(), 5, variables, 3, events, 1, &table };
+        description = { long_name.c_str(), 5, variables, 3, events, 1, &table.table() };
     }
 };
 
@@ -261,8 +263,8 @@ TEST(NodeDescription, ExpandsTheWordsOfTheDictionary)
                                  "x\x81" } };
     node_named_variable variables[] = { { "id", 1 }, { "source", 1 }, { "args", 2 } };
     for (const char *dictionary : { words, static_cast<const char *>(nullptr) }) {
-        vm_native_table table{ list, 1, dictionary };
-        node_description description = { "words", 5, variables, 3, nullptr, 0, &table };
+        test_support::OneModuleTable table(list, 1, dictionary);
+        node_description description = { "words", 5, variables, 3, nullptr, 0, &table.table() };
         Preset p{ "words", &description, 16, 8, 8 };
         Harness harness(p, 1);
         harness.feed(get_node_description(1));

@@ -1,5 +1,6 @@
 #include "node_harness.hpp"
 #include "reference_decoder.hpp"
+#include "tests/support/native_table.hpp"
 
 #include <cstdio>
 #include <cstring>
@@ -63,7 +64,7 @@ const vm_native test_fill_native = { test_fill,
                                      "dest\x11"
                                      "value" };
 const vm_native tiny_native_list[] = { test_sqrt_native, test_fill_native };
-const vm_native_table tiny_natives = { tiny_native_list, 2, nullptr };
+const test_support::OneModuleTable tiny_natives(tiny_native_list, 2);
 
 const node_named_variable tiny_variables[] = { { "id", 1 },
                                                { "source", 1 },
@@ -71,7 +72,7 @@ const node_named_variable tiny_variables[] = { { "id", 1 },
                                                { "leds", 3 } };
 const node_local_event tiny_events[] = { { "timer", "periodic tick" }, { "button", "pressed" } };
 const node_description tiny_description = {
-    "tinynode", NODE_PROTOCOL_VERSION, tiny_variables, 4, tiny_events, 2, &tiny_natives
+    "tinynode", NODE_PROTOCOL_VERSION, tiny_variables, 4, tiny_events, 2, &tiny_natives.table()
 };
 
 const node_named_variable dummy_variables[] = { { "id", 1 },

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "tests/support/native_table.hpp"
+
 // Under AddressSanitizer the guard words are also poisoned, so that a read
 // outside the VM's arrays is caught as well as a write (gcc and clang name
 // the feature differently).
@@ -174,7 +176,7 @@ const vm_native natives_list[TEST_NATIVE_COUNT] = { subtract_native, fill_native
                                                     reach_native,    yield_native, fail_native,
                                                     fail_native,     fail_native,  fail_native,
                                                     fail_native,     fail_native,  stat_native };
-const vm_native_table natives_table = { natives_list, TEST_NATIVE_COUNT, nullptr };
+const OneModuleTable natives_table(natives_list, TEST_NATIVE_COUNT);
 
 template<typename T>
 void fill_guards(std::vector<T> &words, size_t guard, uint16_t pattern)
@@ -246,7 +248,7 @@ std::string describe(const VmMessage &message)
 
 const vm_native_table &test_native_table()
 {
-    return natives_table;
+    return natives_table.table();
 }
 
 VmHarness::VmHarness(const VmSizes &sizes, uint16_t node_id, const vm_native_table &natives)

@@ -4,6 +4,8 @@
 #include <memory>
 #include <sstream>
 
+#include "tests/support/native_table.hpp"
+
 namespace vm_tests
 {
 
@@ -20,9 +22,9 @@ constexpr uint16_t FLAG_BITS = VM_FLAG_EVENT_ACTIVE | VM_FLAG_STEP_BY_STEP | VM_
 // EVENT_RUNNING would make vm_run and repeated vm_step differ by design.
 const vm_native_table &fuzz_natives()
 {
-    static const vm_native_table table = { test_support::test_native_table().natives,
-                                           test_support::NATIVE_YIELD,
-                                           nullptr };
+    // The harness's natives are one module: its first records are contiguous.
+    static const test_support::OneModuleTable table(
+      vm_native_at(&test_support::test_native_table(), 0), test_support::NATIVE_YIELD);
     return table;
 }
 

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tests/support/assembler.hpp"
+#include "tests/support/native_table.hpp"
 #include "tests/support/vm_harness.hpp"
 
 namespace
@@ -168,7 +169,7 @@ TEST(Verifier, RefusesANativeThatTakesMoreWordsThanTheVmPasses)
         VM_MAX_NATIVE_ARGUMENTS + 1, 'g', 'r', 'e', 'e', 'd', 'y', '\x1F', '\x11', 'x', '\0'
     };
     static const vm_native natives[] = { { [](vm_state *, const int16_t *) {}, description } };
-    static const vm_native_table table = { natives, 1, nullptr };
+    static const test_support::OneModuleTable table(natives, 1);
     VmHarness harness(VmSizes(), 1, table);
     std::string pushes;
     for (int i = 0; i <= VM_MAX_NATIVE_ARGUMENTS; i++)

@@ -126,9 +126,9 @@ bool execute_program(const CompileResult &compiled,
     for (const auto &function : target.native_functions) {
         const vm_native *found = nullptr;
         for (const vm_native_table *table : { &nat_standard_table, &epuck_native_table })
-            for (uint16_t i = 0; i < table->count && found == nullptr; ++i)
+            for (uint16_t i = 0; i < vm_native_count(table) && found == nullptr; ++i)
                 if (function.name == native_function(*table, i).name)
-                    found = &table->natives[i];
+                    found = vm_native_at(table, i);
         if (found == nullptr) {
             error = "native function " + function.name + " has no implementation on the host";
             return false;
@@ -136,7 +136,9 @@ bool execute_program(const CompileResult &compiled,
         natives.push_back(*found);
     }
     // Run, not described: no dictionary needed.
-    vm_native_table table{ natives.data(), static_cast<uint16_t>(natives.size()), nullptr };
+    const vm_native_module module{ natives.data(), static_cast<uint16_t>(natives.size()) };
+    const vm_native_module *const modules[] = { &module };
+    vm_native_table table{ modules, 1, nullptr };
 
     std::vector<uint16_t> bytecode(target.bytecode_size, 0);
     std::vector<int16_t> variables(target.variables_size, 0);

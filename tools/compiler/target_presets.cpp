@@ -38,7 +38,7 @@ static std::string native_text(const char *words, const char *text)
 
 NativeFunction native_function(const vm_native_table &table, uint16_t index)
 {
-    const char *description = vm_native_name(&table.natives[index]);
+    const char *description = vm_native_name(vm_native_at(&table, index));
     NativeFunction function;
     function.name = native_text(table.words, description);
     const char *part = vm_native_text_end(description);
@@ -55,7 +55,7 @@ NativeFunction native_function(const vm_native_table &table, uint16_t index)
 std::vector<NativeFunction> native_functions(const vm_native_table &table)
 {
     std::vector<NativeFunction> natives;
-    for (uint16_t i = 0; i < table.count; ++i)
+    for (uint16_t i = 0; i < vm_native_count(&table); ++i)
         natives.push_back(native_function(table, i));
     return natives;
 }

@@ -16,7 +16,7 @@ extern "C" {
 #include "nat_words.h"
 // The tests' deliberately faulty FFT (dsp_fft_truncating_mutant.c), which
 // the image has too, after the e-puck's table.
-void nat_dsp_fft_truncating_mutant_function(vm_state *vm, const int16_t *arguments);
+extern const vm_native_module nat_dsp_fft_truncating_mutant_module;
 }
 
 using qemu_test::Bytes;
@@ -58,9 +58,9 @@ const vm_callbacks recording_callbacks = { ignore_emit, record_report, record_no
 
 // The host's copy of the image's table: to find a native's index, and for
 // the verifier's view of the bytecode (vm_state.natives).
-const vm_native epuck_like_natives[] = { NAT_STANDARD_LIST NAT_DSP_LIST };
-const vm_native_table epuck_like_table = { epuck_like_natives,
-                                           NAT_STANDARD_COUNT + NAT_DSP_COUNT,
+const vm_native_module *const epuck_like_modules[] = { NAT_STANDARD_MODULES NAT_DSP_MODULES };
+const vm_native_table epuck_like_table = { epuck_like_modules,
+                                           uint16_t(std::size(epuck_like_modules)),
                                            nat_words };
 
 constexpr uint16_t init_event = 0xFFFF;
@@ -70,11 +70,12 @@ constexpr uint16_t stack_words = 32;
 // table, or the mutant's after it.
 uint16_t remote_index(const vm_native &native)
 {
-    for (uint16_t i = 0; i < epuck_like_table.count; ++i)
-        if (epuck_like_natives[i].function == native.function)
+    const uint16_t count = vm_native_count(&epuck_like_table);
+    for (uint16_t i = 0; i < count; ++i)
+        if (vm_native_at(&epuck_like_table, i)->function == native.function)
             return i;
-    if (native.function == nat_dsp_fft_truncating_mutant_function)
-        return epuck_like_table.count;
+    if (native.function == nat_dsp_fft_truncating_mutant_module.natives[0].function)
+        return count;
     fail("a native the image does not have");
 }
 

@@ -85,8 +85,8 @@ uint16_t call(vm_state *vm, uint8_t which, uint16_t argument)
 // table the image has for a bare VM.
 bool is_harness_table(const vm_native_table *natives)
 {
-    return natives != nullptr && natives->count == 12 &&
-           std::strcmp(vm_native_name(&natives->natives[0]), "test.subtract") == 0;
+    return natives != nullptr && vm_native_count(natives) == 12 &&
+           std::strcmp(vm_native_name(vm_native_at(natives, 0)), "test.subtract") == 0;
 }
 
 } // namespace

@@ -90,15 +90,15 @@ typedef struct server {
 static server the_server;
 
 /* The e-puck's order, as tests/native_functions_dsp/dsp_node.cpp's table. */
-static const vm_native epuck_native_list[] = { NAT_STANDARD_LIST NAT_DSP_LIST };
-static const vm_native_table epuck_natives = { epuck_native_list,
-                                               NAT_STANDARD_COUNT + NAT_DSP_COUNT,
+static const vm_native_module *const epuck_modules[] = { NAT_STANDARD_MODULES NAT_DSP_MODULES };
+static const vm_native_table epuck_natives = { epuck_modules,
+                                               sizeof epuck_modules / sizeof epuck_modules[0],
                                                nat_words };
 
 /* The DSP tests' deliberately faulty FFT (tests/native_functions_dsp/
  * dsp_fft_truncating_mutant.c), which they must catch on this chip too:
  * REMOTE_VM_CALL_NATIVE's index just after the e-puck's table. */
-void nat_dsp_fft_truncating_mutant_function(vm_state *vm, const int16_t *arguments);
+extern const vm_native_module nat_dsp_fft_truncating_mutant_module;
 
 /* --- UART1: the port's driver receives, answers go out polled ------------------------------ */
 
@@ -459,10 +459,11 @@ static uint16_t call_native(server *s)
 {
     vm_state *vm = machine_vm(s);
     vm_native_function function;
-    if (s->first < vm->natives.count)
-        function = vm->natives.natives[s->first].function;
-    else if (vm->natives.natives == epuck_native_list && s->first == vm->natives.count)
-        function = nat_dsp_fft_truncating_mutant_function;
+    uint16_t count = vm_native_count(&vm->natives);
+    if (s->first < count)
+        function = vm_native_at(&vm->natives, s->first)->function;
+    else if (vm->natives.modules == epuck_modules && s->first == count)
+        function = nat_dsp_fft_truncating_mutant_module.natives[0].function;
     else
         return 0;
     vm->pc = s->second;

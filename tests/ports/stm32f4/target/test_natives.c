@@ -86,7 +86,9 @@ static const vm_native harness_native_list[] = {
     { native_fail, fail_description },        { native_fail, fail_description },
     { native_fail, fail_description },        { native_stat, "\x05test.stat" },
 };
-const vm_native_table harness_natives = { harness_native_list, 12, 0 };
+static const vm_native_module harness_module = { harness_native_list, 12 };
+static const vm_native_module *const harness_modules[] = { &harness_module };
+const vm_native_table harness_natives = { harness_modules, 1, 0 };
 
 /* --- tests/node/node_harness.cpp ------------------------------------------------ */
 
@@ -133,7 +135,9 @@ static const vm_native tiny_native_list[] = {
       "dest\x11"
       "value" },
 };
-static const vm_native_table tiny_natives = { tiny_native_list, 2, 0 };
+static const vm_native_module tiny_module = { tiny_native_list, 2 };
+static const vm_native_module *const tiny_modules[] = { &tiny_module };
+static const vm_native_table tiny_natives = { tiny_modules, 1, 0 };
 
 static const node_named_variable tiny_variables[] = { { "id", 1 },
                                                       { "source", 1 },
