@@ -4,11 +4,15 @@
 #include "epuck_rc5.h"
 
 // From the first falling edge to the check of the second start bit, then to
-// the first sample (the toggle bit), then between samples (§3.9); an RC5
-// bit lasts 1.778 ms, so samples fall in the first half of each bit.
+// the first sample (the toggle bit), then between samples (§3.9), so that
+// samples fall in the first half of each bit. The library samples every
+// 1.8 ms, its 0.1 ms agenda's nearest to an RC5 bit (64 periods of the 36
+// kHz carrier, 1.778 ms); it drifts 22 µs a bit, 0.24 ms by the last one,
+// which left too little room for an interrupt's delay on the chip (the
+// arena's dsPIC robots read the last bits wrong): the bit itself is used.
 #define CHECK_DELAY_US     2100u
 #define FIRST_SAMPLE_US    900u
-#define SAMPLE_INTERVAL_US 1800u
+#define SAMPLE_INTERVAL_US 1778u
 #define TOGGLE_BITS        1u
 #define ADDRESS_BITS       5u
 #define COMMAND_BITS       6u
