@@ -150,6 +150,10 @@ TEST(Lexer, ReferencePositionQuirks)
     EXPECT_EQ(position_of("var b #* \t *# b = b > 1", TokenType::BIGGER).column, 24u);
     // a tab outside comments and a non-ASCII letter count one
     EXPECT_EQ(position_of("\té > 1", TokenType::BIGGER).column, 4u);
+    // letters of two, three and four bytes count one column, and so does any
+    // character in a comment
+    EXPECT_EQ(position_of("é中𝒜 > 1", TokenType::BIGGER).column, 5u);
+    EXPECT_EQ(position_of("#* é€😀 *# b > 1", TokenType::BIGGER).column, 13u);
 }
 
 TEST(Lexer, EndOfStreamPosition)

@@ -37,6 +37,7 @@ NodePointer clone(const Node &node)
     copy->is_statement = node.is_statement;
     copy->height = node.height;
     copy->end_line = node.end_line;
+    copy->children.reserve(node.children.size());
     for (const auto &child : node.children)
         copy->children.push_back(clone(*child));
     return copy;
@@ -262,6 +263,7 @@ class Expander
         case NodeKind::CompoundAssignment: {
             auto sum = make_node(NodeKind::Binary, statement->position);
             sum->operation = statement->operation;
+            sum->children.reserve(2);
             sum->children.push_back(clone(*statement->children[0]));
             sum->children.push_back(std::move(statement->children[1]));
             return expand_assignment(std::move(statement->children[0]), std::move(sum), *statement);
@@ -360,6 +362,7 @@ class Expander
         SourcePosition where = statement.position;
         unsigned size = vector_size(*target);
         auto block = make_node(NodeKind::Block, where);
+        block->children.reserve(size);
         if (size > 1 && mentions(*value, target->name)) {
             unsigned temporary = statement.has_reserved_temporary
                                    ? statement.address
@@ -389,6 +392,7 @@ class Expander
     static NodePointer scalar_assignment(NodePointer store, NodePointer value, SourcePosition where)
     {
         auto assignment = make_node(NodeKind::Assignment, where);
+        assignment->children.reserve(2);
         assignment->children.push_back(std::move(store));
         assignment->children.push_back(std::move(value));
         return assignment;
@@ -461,6 +465,7 @@ class Expander
             auto node = make_node(expression.kind, expression.position);
             node->operation = expression.operation;
             node->height = expression.height;
+            node->children.reserve(expression.children.size());
             for (const auto &child : expression.children)
                 node->children.push_back(element(*child, k));
             return node;

@@ -27,7 +27,7 @@ unsigned word_count(const Code &code)
 {
     unsigned total = 0;
     for (const auto &instruction : code)
-        total += static_cast<unsigned>(instruction.words.size());
+        total += instruction.word_count;
     return total;
 }
 
@@ -74,7 +74,7 @@ class Generator
             }
         }
         sections.back().last_line = last_line;
-        return sections;
+        return std::move(sections); // the generator is done with them
     }
 
   private:
@@ -86,7 +86,7 @@ class Generator
 
     static void add(Code &code, unsigned line, std::initializer_list<uint16_t> words)
     {
-        code.push_back({ std::vector<uint16_t>(words), line, -1 });
+        code.push_back(make_instruction(words, line));
     }
 
     static void immediate(Code &code, int64_t value, unsigned line)
@@ -240,7 +240,8 @@ class Generator
         }
         case NodeKind::CallSub: {
             unsigned index = *compilation.find_subroutine(node.name);
-            code.push_back({ { opcode_word(VM_OP_SUB_CALL, 0) }, line, static_cast<int>(index) });
+            code.push_back(
+              make_instruction({ opcode_word(VM_OP_SUB_CALL, 0) }, line, static_cast<int>(index)));
             break;
         }
         case NodeKind::FunctionCall: call_code(node, code); break;
@@ -279,7 +280,8 @@ class Generator
                 add(code, line, { opcode_word(VM_OP_STORE, parameter_words[k]) });
             }
         }
-        code.push_back({ { opcode_word(VM_OP_SUB_CALL, 0) }, line, static_cast<int>(index) });
+        code.push_back(
+          make_instruction({ opcode_word(VM_OP_SUB_CALL, 0) }, line, static_cast<int>(index)));
         return called;
     }
 

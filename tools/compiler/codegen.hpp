@@ -3,7 +3,9 @@
 
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 #include "compilation.hpp"
@@ -11,11 +13,31 @@
 namespace aseba
 {
 
+// The most words an instruction takes (vm_opcodes.h: EMIT).
+constexpr unsigned MAX_INSTRUCTION_WORDS = 3;
+
+// The words are kept in the instruction rather than in a vector of their
+// own: a program has thousands of instructions, and one allocation each
+// made code generation slow.
 struct Instruction {
-    std::vector<uint16_t> words;
+    std::array<uint16_t, MAX_INSTRUCTION_WORDS> words{};
+    unsigned word_count = 0; // the first `word_count` of `words` are used
     unsigned line = 0;
     int subroutine = -1; // SUB_CALL: index of the called subroutine, patched by the linker
 };
+
+// The instruction of `words` (at most MAX_INSTRUCTION_WORDS) from `line`.
+inline Instruction make_instruction(std::initializer_list<uint16_t> words,
+                                    unsigned line,
+                                    int subroutine = -1)
+{
+    Instruction instruction;
+    for (uint16_t word : words)
+        instruction.words[instruction.word_count++] = word;
+    instruction.line = line;
+    instruction.subroutine = subroutine;
+    return instruction;
+}
 
 using Code = std::vector<Instruction>;
 

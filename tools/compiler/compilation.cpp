@@ -40,7 +40,7 @@ Compilation::Compilation(const TargetDescription &target_description,
 {
     unsigned address = 0;
     for (const auto &named : target.named_variables) {
-        variables.push_back({ named.name, static_cast<uint16_t>(address), named.size });
+        add_variable({ named.name, static_cast<uint16_t>(address), named.size });
         address += named.size;
     }
     named_variable_count = variables.size();
@@ -52,12 +52,18 @@ Compilation::Compilation(const TargetDescription &target_description,
         constants.emplace(constant.name, constant.value);
 }
 
+void Compilation::add_variable(const VariableInfo &variable)
+{
+    variable_index.emplace(variable.name, variables.size()); // keeps an earlier one
+    variables.push_back(variable);
+}
+
 const VariableInfo *Compilation::find_variable(const std::string &name) const
 {
-    for (const auto &variable : variables)
-        if (variable.name == name)
-            return &variable;
-    return nullptr;
+    auto found = variable_index.find(name);
+    if (found == variable_index.end())
+        return nullptr;
+    return &variables[found->second];
 }
 
 std::optional<int64_t> Compilation::find_constant(const std::string &name) const

@@ -6,6 +6,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "compiler.hpp"
@@ -66,6 +67,10 @@ struct Compilation {
     const CommonDefinitions &definitions;
 
     std::vector<VariableInfo> variables; // named variables, then user variables
+    // Name -> index in `variables` (the first of that name): every name in
+    // the program is looked up, and scanning the list took a good share of
+    // the parsing. Filled by add_variable.
+    std::unordered_map<std::string, size_t> variable_index;
     size_t named_variable_count = 0;
     unsigned next_free_address = 0;           // first word after the user variables
     std::map<std::string, int64_t> constants; // global and source constants
@@ -91,6 +96,7 @@ struct Compilation {
     Compilation(const TargetDescription &target_description,
                 const CommonDefinitions &common_definitions);
 
+    void add_variable(const VariableInfo &variable);
     const VariableInfo *find_variable(const std::string &name) const;
     std::optional<int64_t> find_constant(const std::string &name) const;
     std::optional<unsigned> find_global_event(const std::string &name) const;

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <locale>
-#include <map>
 
 #include "diagnostics.hpp"
 
@@ -22,8 +21,14 @@ constexpr unsigned TAB_WIDTH_IN_COMMENTS = 4;
 constexpr int64_t LITERAL_LIMIT = 65536;         // literals must be below this in any base
 constexpr int64_t INT16_LIMIT = 32768;           // hex and binary literals above wrap negative
 constexpr int64_t SATURATED_LITERAL = 1LL << 40; // keeps huge spellings from overflowing
+constexpr size_t BYTES_PER_TOKEN_GUESS = 4;      // to reserve the tokens: regrowing cost more
 
-const std::map<std::string, TokenType, std::less<>> keywords = {
+struct Keyword {
+    std::string_view spelling;
+    TokenType type;
+};
+
+constexpr Keyword keywords[] = {
     { "when", TokenType::WHEN },
     { "emit", TokenType::EMIT },
     { "_emit", TokenType::HIDDEN_EMIT },
@@ -50,12 +55,22 @@ const std::map<std::string, TokenType, std::less<>> keywords = {
     { "not", TokenType::NOT },
 };
 
-// Letters and digits as the reference sees them (its en_US.UTF-8 locale);
-// plain ASCII rules if that locale is not installed.
-bool is_alphanumeric(char32_t c)
+// The type of the word `word`: a keyword's or IDENTIFIER. A plain scan,
+// comparing lengths and first letters before the whole spellings, is
+// cheaper than a map's string comparisons, and every name goes through it.
+TokenType word_type(std::string_view word)
 {
-    if (c < 0x80)
-        return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    for (const Keyword &keyword : keywords)
+        if (keyword.spelling.size() == word.size() && keyword.spelling[0] == word[0] &&
+            keyword.spelling == word)
+            return keyword.type;
+    return TokenType::IDENTIFIER;
+}
+
+// Non-ASCII letters and digits as the reference sees them (its en_US.UTF-8
+// locale); from U+00C0 on, all letters if that locale is not installed.
+bool is_non_ascii_alphanumeric(char32_t c)
+{
     static const std::ctype<wchar_t> *classifier = []() -> const std::ctype<wchar_t> * {
         try {
             static const std::locale locale("en_US.UTF-8");
@@ -67,6 +82,15 @@ bool is_alphanumeric(char32_t c)
     if (classifier == nullptr)
         return c >= 0xC0; // without the locale, take non-ASCII text as letters
     return classifier->is(std::ctype_base::alnum, static_cast<wchar_t>(c));
+}
+
+// Letters and digits as the reference sees them. The ASCII test stays apart
+// from the locale's, so that it is inlined where names are read.
+bool is_alphanumeric(char32_t c)
+{
+    if (c < 0x80)
+        return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    return is_non_ascii_alphanumeric(c);
 }
 
 bool is_word_start(char32_t c)
@@ -123,6 +147,12 @@ size_t first_invalid_utf8(std::string_view text)
     return i;
 }
 
+// The length of the UTF-8 sequence that starts with `byte`, in valid text.
+unsigned sequence_length(unsigned char byte)
+{
+    return byte < 0x80 ? 1 : (byte >> 5) == 0x6 ? 2 : (byte >> 4) == 0xE ? 3 : 4;
+}
+
 // Refuses text that is not UTF-8, at the line and column of the bad byte.
 void check_utf8(std::string_view text)
 {
@@ -143,28 +173,34 @@ void check_utf8(std::string_view text)
 
 // A literal out of range, named as it is written (with its minus sign), and
 // for a hexadecimal or binary spelling the `value` it stands for.
-std::string out_of_range_message(const std::string &spelling, int64_t value, bool negated)
+std::string out_of_range_message(std::string_view spelling, int64_t value, bool negated)
 {
-    std::string written = (negated ? "-" : "") + spelling;
+    std::string written = (negated ? "-" : "");
+    written += spelling;
     bool decimal = spelling.size() < 2 || (spelling[1] != 'x' && spelling[1] != 'b');
     if (!decimal && value < SATURATED_LITERAL)
         written += " (" + std::to_string(value) + ")";
     return "Integer value " + written + " out of [-32768;32767] range";
 }
 
+// Reads the UTF-8 text in place: most of it is ASCII, and decoding it
+// whole, then encoding each name back, cost more than the rest of the lexer.
+// Columns count characters, not bytes.
 class Lexer
 {
   public:
     explicit Lexer(std::string_view source)
-      : text((check_utf8(source), decode_utf8(source)))
+      : text(source)
     {
+        check_utf8(text);
     }
 
     std::vector<Token> run()
     {
         std::vector<Token> tokens;
+        tokens.reserve(text.size() / BYTES_PER_TOKEN_GUESS);
         while (index < text.size()) {
-            char32_t c = text[index];
+            char c = text[index];
             if (c == ' ' || c == '\t') {
                 advance();
             } else if (c == '\n') {
@@ -188,20 +224,39 @@ class Lexer
     }
 
   private:
-    std::u32string text;
-    size_t index = 0;
+    std::string_view text; // valid UTF-8
+    size_t index = 0;      // in bytes, at the start of a character
     unsigned line = 1;
     unsigned column = 0; // columns used so far on this line
     bool ended_in_line_comment = false;
 
-    char32_t peek(size_t offset = 0) const
+    // The character at `index`, or 0 at the end.
+    char32_t current() const
+    {
+        if (index >= text.size())
+            return 0;
+        auto first = static_cast<unsigned char>(text[index]);
+        unsigned length = sequence_length(first);
+        if (length == 1)
+            return first;
+        char32_t code = first & (0x7F >> length);
+        for (unsigned k = 1; k < length; ++k)
+            code = (code << 6) | (static_cast<unsigned char>(text[index + k]) & 0x3F);
+        return code;
+    }
+
+    // The byte `offset` bytes after `index`, or 0 at the end. Compared with
+    // ASCII characters only, it tells the character there: bytes of longer
+    // UTF-8 sequences are never ASCII.
+    char peek(size_t offset = 0) const
     {
         return index + offset < text.size() ? text[index + offset] : 0;
     }
 
+    // Moves past the character at `index`.
     void advance()
     {
-        ++index;
+        index += sequence_length(static_cast<unsigned char>(text[index]));
         ++column;
     }
 
@@ -209,16 +264,19 @@ class Lexer
     // reference does.
     void skip_comment_character()
     {
-        char32_t c = text[index++];
+        char c = text[index];
         if (c == '\n') {
+            ++index;
             ++line;
             column = 0;
         } else if (c == '\r') {
+            ++index;
             column = 0;
         } else if (c == '\t') {
+            ++index;
             column += TAB_WIDTH_IN_COMMENTS;
         } else {
-            ++column;
+            advance();
         }
     }
 
@@ -257,19 +315,18 @@ class Lexer
     {
         Token token;
         token.position = { line, column + 1 };
-        char32_t c = peek();
+        char32_t c = current();
         if (is_word_start(c)) {
             size_t start = index;
-            while (index < text.size() && is_word_continuation(peek()))
+            while (index < text.size() && is_word_continuation(current()))
                 advance();
-            std::u32string word = text.substr(start, index - start);
-            token.text = encode_utf8(word);
+            std::string_view word = text.substr(start, index - start);
+            token.text = word;
             if (c >= '0' && c <= '9') {
                 token.type = TokenType::INTEGER;
                 token.value = number_value(word, token.position);
             } else {
-                auto keyword = keywords.find(token.text);
-                token.type = keyword != keywords.end() ? keyword->second : TokenType::IDENTIFIER;
+                token.type = word_type(word);
             }
             return token;
         }
@@ -281,7 +338,7 @@ class Lexer
     }
 
     // The value of a number word; hex and binary above 32767 wrap negative.
-    static int32_t number_value(const std::u32string &word, SourcePosition position)
+    static int32_t number_value(std::string_view word, SourcePosition position)
     {
         int base = 10;
         size_t first_digit = 0;
@@ -299,7 +356,7 @@ class Lexer
         }
         int64_t value = 0;
         for (size_t i = first_digit; i < word.size(); ++i) {
-            int digit = digit_value(word[i]);
+            int digit = digit_value(static_cast<unsigned char>(word[i]));
             if (digit < 0 || digit >= base)
                 fail(position, base_error);
             value = value * base + digit;
@@ -307,7 +364,7 @@ class Lexer
                 value = SATURATED_LITERAL;
         }
         if (value >= LITERAL_LIMIT)
-            fail(position, out_of_range_message(encode_utf8(word), value, false));
+            fail(position, out_of_range_message(word, value, false));
         if (base != 10 && value >= INT16_LIMIT)
             value -= LITERAL_LIMIT;
         return static_cast<int32_t>(value);
@@ -316,9 +373,9 @@ class Lexer
     // Reads punctuation and operators, longest match first.
     TokenType read_symbol(SourcePosition position)
     {
-        char32_t c = peek();
-        char32_t next = peek(1);
-        char32_t after = peek(2);
+        char32_t c = current();
+        char next = peek(1);
+        char after = peek(2);
         auto take = [this](unsigned count, TokenType type) {
             for (unsigned i = 0; i < count; ++i)
                 advance();

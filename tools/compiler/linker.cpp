@@ -160,13 +160,12 @@ void link(std::vector<Section> sections, const Compilation &compilation, Compile
                 if (opcode_of(instruction) == VM_OP_STOP)
                     instruction.words[0] = static_cast<uint16_t>(VM_OP_SUB_RET << VM_OPCODE_SHIFT);
             if (code.empty() || opcode_of(code.back()) != VM_OP_SUB_RET)
-                code.push_back({ { static_cast<uint16_t>(VM_OP_SUB_RET << VM_OPCODE_SHIFT) },
-                                 section.last_line,
-                                 -1 });
+                code.push_back(make_instruction(
+                  { static_cast<uint16_t>(VM_OP_SUB_RET << VM_OPCODE_SHIFT) }, section.last_line));
             subroutines[section.subroutine] = &section;
         } else if (!section.code.empty()) {
             section.code.push_back(
-              { { static_cast<uint16_t>(VM_OP_STOP) }, section.last_line, -1 });
+              make_instruction({ static_cast<uint16_t>(VM_OP_STOP) }, section.last_line));
             events[section.event_id] = &section;
         }
     }
@@ -180,7 +179,7 @@ void link(std::vector<Section> sections, const Compilation &compilation, Compile
         table.push_back(static_cast<uint16_t>(address));
         order.push_back(section);
         for (const auto &instruction : section->code)
-            address += static_cast<unsigned>(instruction.words.size());
+            address += instruction.word_count;
     }
     for (size_t s = 0; s < subroutines.size(); ++s) {
         if (subroutines[s] == nullptr)
@@ -188,7 +187,7 @@ void link(std::vector<Section> sections, const Compilation &compilation, Compile
         subroutine_address[s] = address;
         order.push_back(subroutines[s]);
         for (const auto &instruction : subroutines[s]->code)
-            address += static_cast<unsigned>(instruction.words.size());
+            address += instruction.word_count;
     }
     if (address > compilation.target.bytecode_size) {
         // the first handler or subroutine that ends beyond the limit
@@ -198,7 +197,7 @@ void link(std::vector<Section> sections, const Compilation &compilation, Compile
         const Section *first_out = order.front();
         for (const Section *section : order) {
             for (const auto &instruction : section->code)
-                end += static_cast<unsigned>(instruction.words.size());
+                end += instruction.word_count;
             first_out = section;
             if (end > compilation.target.bytecode_size)
                 break;
@@ -211,17 +210,19 @@ void link(std::vector<Section> sections, const Compilation &compilation, Compile
     }
 
     result.bytecode = table;
+    result.bytecode.reserve(address);
     result.line_of_word.assign(table.size(), 0);
+    result.line_of_word.reserve(address);
     for (const Section *section : order) {
         for (const auto &instruction : section->code) {
-            std::vector<uint16_t> words = instruction.words;
+            std::array<uint16_t, MAX_INSTRUCTION_WORDS> words = instruction.words;
             if (instruction.subroutine >= 0)
                 words[0] = static_cast<uint16_t>(
                   (VM_OP_SUB_CALL << VM_OPCODE_SHIFT) |
                   (subroutine_address[static_cast<size_t>(instruction.subroutine)] &
                    VM_OPERAND_MASK));
-            for (uint16_t word : words) {
-                result.bytecode.push_back(word);
+            for (unsigned k = 0; k < instruction.word_count; ++k) {
+                result.bytecode.push_back(words[k]);
                 result.line_of_word.push_back(instruction.line);
             }
         }

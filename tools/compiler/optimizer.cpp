@@ -256,6 +256,7 @@ bool is_empty_block(const Node *node)
 NodePointer optimize_block(NodePointer block)
 {
     std::vector<NodePointer> kept;
+    kept.reserve(block->children.size());
     for (auto &statement : block->children) {
         NodePointer optimized = optimize(std::move(statement));
         if (optimized && !is_empty_block(optimized.get()))

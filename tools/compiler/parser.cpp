@@ -410,7 +410,7 @@ class Parser
         if (compilation.next_free_address + declared.size > compilation.target.variables_size)
             fail(name.position, "No more free variable space");
         Variable global{ name.text, compilation.next_free_address, declared.size, -1 };
-        compilation.variables.push_back(
+        compilation.add_variable(
           { name.text, static_cast<uint16_t>(global.address), static_cast<uint16_t>(global.size) });
         compilation.next_free_address += declared.size;
         return initial_assignment(declared, global);
@@ -696,6 +696,7 @@ class Parser
         if (is_elseif)
             guard.emplace(nesting, position());
         auto node = make_node(NodeKind::If, next().position);
+        node->children.reserve(3); // condition, true block, else block
         node->children.push_back(or_expression());
         flush_calls();
         expect(TokenType::THEN);
@@ -740,6 +741,7 @@ class Parser
     NodePointer while_statement()
     {
         auto node = make_node(NodeKind::While, next().position);
+        node->children.reserve(2);
         node->children.push_back(or_expression());
         flush_calls();
         expect(TokenType::DO);
@@ -976,11 +978,14 @@ class Parser
             if (leftmost->kind == NodeKind::Memory)
                 check_constant_index(*leftmost);
             unsigned size = vector_size(*argument);
-            std::string which = "Argument " + std::to_string(i) + " (" + parameter.name +
-                                ") of function " + function + " is of size " + std::to_string(size);
+            // the start of a size error, built only when one is found
+            auto which = [&] {
+                return "Argument " + std::to_string(i) + " (" + parameter.name + ") of function " +
+                       function + " is of size " + std::to_string(size);
+            };
             if (parameter.size > 0 && size != static_cast<unsigned>(parameter.size))
                 fail(argument_position,
-                     which + ", function definition demands size " +
+                     which() + ", function definition demands size " +
                        std::to_string(parameter.size));
             if (parameter.size < 0) {
                 auto known = template_sizes.find(parameter.size);
@@ -988,7 +993,7 @@ class Parser
                     template_sizes[parameter.size] = size;
                 else if (known->second != size)
                     fail(argument_position,
-                         which +
+                         which() +
                            ", while a previous instance of the template parameter was of size " +
                            std::to_string(known->second));
             }
@@ -1060,6 +1065,7 @@ class Parser
         next();
         auto node = make_node(kind, where); // a target that is no variable fails when expanded
         node->operation = operation;
+        node->children.reserve(2);
         node->children.push_back(std::move(target));
         if (kind != NodeKind::IncrementAssignment)
             node->children.push_back(binary_or());
@@ -1103,6 +1109,7 @@ class Parser
         node->operation = operation;
         node->height = std::max(left->height, right->height) + 1;
         check_height(*node);
+        node->children.reserve(2);
         node->children.push_back(std::move(left));
         node->children.push_back(std::move(right));
         return node;
