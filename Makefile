@@ -44,6 +44,7 @@ host-sanitize_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover
 LIBRARIES :=
 PROGRAMS :=
 TESTS :=
+PLAIN_TESTS :=
 # Tests that are not GoogleTest programs (the IDE's browser tests): any
 # program whose output ends with "N passed, N failed".
 TEST_SCRIPTS :=
@@ -121,7 +122,11 @@ ALL_SOURCES := $(sort $(foreach x,$(LIBRARIES) $(PROGRAMS) $(TESTS),$($(x)_SOURC
 HOST_OUTPUTS = $(foreach l,$(LIBRARIES),$(BUILD)/host/lib/lib$(l).a) \
                $(foreach p,$(PROGRAMS),$(BUILD)/host/bin/$(p)) \
                $(foreach t,$(TESTS),$(BUILD)/host/tests/$(t))
-TEST_BINARIES = $(foreach t,$(TESTS),$(BUILD)/host-sanitize/tests/$(t))
+# Every test under ASan and UBSan, but PLAIN_TESTS: those whose subject is
+# the dsPIC's machine code on the simulator, where the sanitizers would only
+# slow the simulator down (they run in the plain build).
+TEST_BINARIES = $(foreach t,$(filter-out $(PLAIN_TESTS),$(TESTS)),$(BUILD)/host-sanitize/tests/$(t)) \
+                $(foreach t,$(PLAIN_TESTS),$(BUILD)/host/tests/$(t))
 
 .PHONY: all test tests cross-check run format clean deps fuzz bench install
 all: $(HOST_OUTPUTS)

@@ -79,8 +79,7 @@ $(DSPIC30_HARNESS).elf: $(DSPIC30_HARNESS_OBJECTS) $(DSPIC30_HARNESS_SCRIPT) $(D
 # remote_node.cpp stand for vm.h and node.h, each call run by the image on
 # the simulated chip in this process (simulated_link.cpp, the simulator
 # library) instead of in QEMU. (Not the verifier's tests: they read the
-# rejection's text, which the protocol does not bring back; nor the
-# operators' tests, 40 of 40 on the chip but 40 s of CPU under ASan.)
+# rejection's text, which the protocol does not bring back.)
 DSPIC30_REMOTE_SOURCES := tests/ports/stm32f4/remote_link.cpp tests/ports/dspic30/simulated_link.cpp
 EXTRA_CFLAGS_tests/ports/dspic30/simulated_link := '-DDSPIC30_HARNESS_IMAGE="$(DSPIC30_HARNESS).hex"'
 
@@ -89,6 +88,15 @@ dspic30_vm_programs_test_SOURCES := tests/vm/programs_test.cpp tests/vm/program_
                                     tests/ports/stm32f4/remote_vm.cpp $(DSPIC30_REMOTE_SOURCES)
 dspic30_vm_programs_test_LIBS := test_support dspic30_sim
 dspic30_vm_programs_test_LDLIBS := $(DSPIC30_TEST_GTEST_LDLIBS)
+
+# Every operator on boundary values (tests/vm/operators_test.cpp): 975
+# million cycles, run without the sanitizers (PLAIN_TESTS).
+TESTS += dspic30_vm_operators_test
+PLAIN_TESTS += dspic30_vm_operators_test
+dspic30_vm_operators_test_SOURCES := tests/vm/operators_test.cpp tests/ports/stm32f4/remote_vm.cpp \
+                                     $(DSPIC30_REMOTE_SOURCES)
+dspic30_vm_operators_test_LIBS := test_support dspic30_sim
+dspic30_vm_operators_test_LDLIBS := $(DSPIC30_TEST_GTEST_LDLIBS)
 
 TESTS += dspic30_vm_debug_test
 dspic30_vm_debug_test_SOURCES := tests/vm/debug_test.cpp tests/ports/stm32f4/remote_vm.cpp $(DSPIC30_REMOTE_SOURCES)
@@ -120,9 +128,27 @@ dspic30_dsp_natives_test_SOURCES := tests/ports/dspic30/remote_dsp_node.cpp \
 dspic30_dsp_natives_test_LIBS := aseba_compiler aseba_natives dspic30_sim
 dspic30_dsp_natives_test_LDLIBS := $(DSPIC30_TEST_GTEST_LDLIBS)
 
+# The standard natives' tests that need no reference library, unchanged, on
+# the image's natives: remote_our_node.cpp stands for our_node.cpp. (Not
+# natives_vm_test.cpp: its language example takes 1,100 words of variables,
+# more than the harness image has room for; its calls through bytecode are
+# the program tests'.) Without the sanitizers (PLAIN_TESTS): what runs is
+# the chip's code, and under them the simulator takes minutes for the
+# 3.8 billion cycles of the random and model tests.
+TESTS += dspic30_natives_test
+PLAIN_TESTS += dspic30_natives_test
+dspic30_natives_test_SOURCES := tests/ports/dspic30/remote_our_node.cpp \
+                                tests/native_functions/native_lookup.cpp \
+                                tests/native_functions/natives_spec_test.cpp \
+                                tests/native_functions/natives_deque_test.cpp \
+                                tests/ports/stm32f4/remote_vm.cpp vm/vm_native_text.c $(DSPIC30_REMOTE_SOURCES)
+dspic30_natives_test_LIBS := aseba_compiler aseba_natives dspic30_sim
+dspic30_natives_test_LDLIBS := $(DSPIC30_TEST_GTEST_LDLIBS)
+
 # The image these tests run; order-only, so that it does not enter the link.
 $(foreach v,host host-sanitize,$(foreach t,dspic30_vm_programs_test dspic30_vm_debug_test dspic30_node_traces_test \
-                                           dspic30_dsp_natives_test,\
+                                           dspic30_dsp_natives_test dspic30_natives_test \
+                                           dspic30_vm_operators_test,\
   $(BUILD)/$(v)/tests/$(t))): | $(DSPIC30_HARNESS).hex
 
 # The VM's instruction cycles per bytecode step on the dsPIC30F, for `make bench`.
