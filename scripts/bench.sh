@@ -212,8 +212,8 @@ flash_robot=$(awk '/client connected at cycle/ { from = $6 } /client gone at cyc
     END { printf "%.1f", (to - from) / 14745600 }' "$scratch/flash.err")
 
 echo "bench: arena" >&2
-arena_goal_factor=10      # at 100 robots, every run (issues 7 and 17)
-arena_goal_factor_many=0.5 # at 1000 robots (issue 17)
+arena_goal_factor=30    # at 100 robots, every run, on an idle machine (issue 29; 10 before)
+arena_goal_factor_many=2 # at 1000 robots (issue 29; 0.5 before)
 arena_runs=3
 arena_port=$((40000 + RANDOM % 20000))
 # One run: "factor processor_factor threads": simulated seconds over
