@@ -2,7 +2,7 @@
 # (computed independently in the tests) and, bit for bit, against the natives
 # of Debian's reference VM library (/usr/lib/libasebavm.a).
 TESTS += natives_test
-natives_test_SOURCES := tests/native_functions/our_node.cpp tests/native_functions/native_lookup.cpp \
+natives_test_SOURCES := tests/native_functions/our_node.cpp tests/native_functions/our_node_common.cpp \
                         tests/native_functions/reference_node.cpp \
                         tests/native_functions/natives_spec_test.cpp \
                         tests/native_functions/natives_deque_test.cpp \

@@ -22,6 +22,10 @@ const vm_native &standard_native(std::string_view name);
 // description expanded with their words (nat_words.h).
 aseba::NativeFunction description_of(const vm_native &native);
 
+// The VM's callbacks of an OurNode (its context): the errors go to its
+// `errors`, the rest is ignored.
+extern const vm_callbacks our_node_callbacks;
+
 // One error message the VM sent, with its protocol payload.
 struct ErrorReport {
     enum class Kind { array_access, division_by_zero, node_specific };

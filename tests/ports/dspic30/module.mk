@@ -116,7 +116,7 @@ dspic30_node_traces_test_LDLIBS := -lasebacommon $(DSPIC30_TEST_GTEST_LDLIBS)
 # demo test: the e-puck's 1,024 words of bytecode do not fit beside the
 # harness in the chip's RAM.)
 TESTS += dspic30_dsp_natives_test
-dspic30_dsp_natives_test_SOURCES := tests/ports/dspic30/remote_dsp_node.cpp \
+dspic30_dsp_natives_test_SOURCES := tests/ports/dspic30/remote_dsp_node.cpp tests/ports/dspic30/remote_epuck_vm.cpp \
                                     tests/native_functions_dsp/dsp_expectations.cpp \
                                     tests/native_functions_dsp/dsp_fft_test.cpp \
                                     tests/native_functions_dsp/dsp_fft_exact_test.cpp \
@@ -137,8 +137,8 @@ dspic30_dsp_natives_test_LDLIBS := $(DSPIC30_TEST_GTEST_LDLIBS)
 # 3.8 billion cycles of the random and model tests.
 TESTS += dspic30_natives_test
 PLAIN_TESTS += dspic30_natives_test
-dspic30_natives_test_SOURCES := tests/ports/dspic30/remote_our_node.cpp \
-                                tests/native_functions/native_lookup.cpp \
+dspic30_natives_test_SOURCES := tests/ports/dspic30/remote_our_node.cpp tests/ports/dspic30/remote_epuck_vm.cpp \
+                                tests/native_functions/our_node_common.cpp \
                                 tests/native_functions/natives_spec_test.cpp \
                                 tests/native_functions/natives_deque_test.cpp \
                                 tests/ports/stm32f4/remote_vm.cpp vm/vm_native_text.c $(DSPIC30_REMOTE_SOURCES)

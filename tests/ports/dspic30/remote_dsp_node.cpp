@@ -10,20 +10,16 @@
 #include <string>
 
 #include "tests/native_functions_dsp/dsp_node.hpp"
+#include "tests/ports/dspic30/remote_epuck_vm.hpp"
 #include "tests/ports/stm32f4/remote_link.hpp"
 
 extern "C" {
-#include "nat_words.h"
 // The tests' deliberately faulty FFT (dsp_fft_truncating_mutant.c), which
 // the image has too, after the e-puck's table.
 extern const vm_native_module nat_dsp_fft_truncating_mutant_module;
 }
 
-using qemu_test::Bytes;
 using qemu_test::fail;
-using qemu_test::Reader;
-using qemu_test::RemoteMachine;
-using qemu_test::Writer;
 
 namespace
 {
@@ -56,13 +52,6 @@ void record_node_specific(void *context, uint16_t pc, const char *message)
 
 const vm_callbacks recording_callbacks = { ignore_emit, record_report, record_node_specific };
 
-// The host's copy of the image's table: to find a native's index, and for
-// the verifier's view of the bytecode (vm_state.natives).
-const vm_native_module *const epuck_like_modules[] = { NAT_STANDARD_MODULES NAT_DSP_MODULES };
-const vm_native_table epuck_like_table = { epuck_like_modules,
-                                           uint16_t(std::size(epuck_like_modules)),
-                                           nat_words };
-
 constexpr uint16_t init_event = 0xFFFF;
 constexpr uint16_t stack_words = 32;
 
@@ -70,12 +59,10 @@ constexpr uint16_t stack_words = 32;
 // table, or the mutant's after it.
 uint16_t remote_index(const vm_native &native)
 {
-    const uint16_t count = vm_native_count(&epuck_like_table);
-    for (uint16_t i = 0; i < count; ++i)
-        if (vm_native_at(&epuck_like_table, i)->function == native.function)
-            return i;
+    if (const std::optional<uint16_t> index = dspic30_test::epuck_index(native))
+        return *index;
     if (native.function == nat_dsp_fft_truncating_mutant_module.natives[0].function)
-        return count;
+        return vm_native_count(&dspic30_test::epuck_like_table);
     fail("a native the image does not have");
 }
 
@@ -94,27 +81,17 @@ DspNode::DspNode(uint16_t variables_size, uint16_t bytecode_words, uint16_t args
     vm.memory.stack = stack_.data();
     vm.memory.stack_size = stack_words;
     vm.memory.args_size = args_size;
-    vm.natives = epuck_like_table;
+    vm.natives = dspic30_test::epuck_like_table;
     vm.callbacks = &recording_callbacks;
     vm.context = this;
-    Bytes answer = RemoteMachine::instance().open(REMOTE_OPEN_VM, REMOTE_NATIVES_EPUCK, &vm, 1);
-    Reader reader{ answer };
-    RemoteMachine::instance().take_changes(reader);
+    dspic30_test::open_epuck_vm(vm);
 }
 
 void DspNode::call(const vm_native &native, const std::vector<int16_t> &popped_words)
 {
     if (popped_words.size() != vm_native_stack_words(&native))
         throw std::invalid_argument("wrong argument count for " + description_of(native).name);
-    Writer writer;
-    writer.u8(REMOTE_VM_CALL_NATIVE);
-    writer.u16(remote_index(native));
-    writer.u16(call_pc);
-    writer.u16(uint16_t(popped_words.size()));
-    for (int16_t word : popped_words)
-        writer.u16(uint16_t(word));
-    if (qemu_test::call_vm(&vm, writer) == 0)
-        fail("the image refused a native call");
+    dspic30_test::call_epuck_native(vm, remote_index(native), call_pc, popped_words);
 }
 
 void DspNode::put(uint16_t address, const Words &values)
