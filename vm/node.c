@@ -122,6 +122,19 @@ bool node_receive_ready(const node_state *node)
     return !node->frame_ready;
 }
 
+uint16_t node_receive_wanted(node_state *node, uint32_t now_ms)
+{
+    if (node->frame_ready)
+        return 0;
+    expire_partial_frame(node, now_ms);
+    // While resynchronising, bytes are dropped one by one until a silence.
+    if (node->resynchronising)
+        return 1;
+    if (node->received < NODE_HEADER_SIZE)
+        return (uint16_t)(NODE_HEADER_SIZE - node->received);
+    return (uint16_t)(NODE_HEADER_SIZE + frame_word(node, FRAME_LENGTH) - node->received);
+}
+
 uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, uint32_t now_ms)
 {
     uint16_t taken = 0;

@@ -146,6 +146,12 @@ bool node_receive_byte(node_state *node, uint8_t byte, uint32_t now_ms);
 // own (a UART's ring) asks first, and leaves them there until then.
 bool node_receive_ready(const node_state *node);
 
+// How many bytes node_receive would take now at time `now_ms`, all of them
+// (it first drops a stalled partial frame, as node_receive would): what the
+// frame lacks, 0 while a complete frame waits. Lets a caller take that many
+// from its own buffer at once.
+uint16_t node_receive_wanted(node_state *node, uint32_t now_ms);
+
 // One step of the main loop, never blocking (bytecode.md §6.5): discards a
 // stalled partial frame, runs the VM for at most NODE_STEP_BUDGET
 // instructions, handles the waiting frame if any, then starts the lowest

@@ -96,6 +96,31 @@ TEST(NodeReceive, TakesOneFrameAtATime)
     EXPECT_EQ(hex(harness.frames[1]), hex(node_present));
 }
 
+// What node_receive_wanted says is what the frame lacks: the header, then
+// the payload its header announced, nothing while the frame waits; after a
+// stall the partial frame is gone and a header is wanted again.
+TEST(NodeReceive, WantsWhatTheFrameLacks)
+{
+    Harness harness(preset("tiny"), 1);
+    node_state *node = &harness.node();
+    EXPECT_EQ(node_receive_wanted(node, 0), 6);
+    EXPECT_EQ(node_receive(node, list_nodes.data(), 4, 0), 4);
+    EXPECT_EQ(node_receive_wanted(node, 0), 2);
+    EXPECT_EQ(node_receive(node, list_nodes.data() + 4, 2, 0), 2);
+    EXPECT_EQ(node_receive_wanted(node, 0), 2); // one word of payload
+    EXPECT_EQ(node_receive(node, list_nodes.data() + 6, 2, 0), 2);
+    EXPECT_EQ(node_receive_wanted(node, 0), 0);
+    node_poll(node, 0);
+    EXPECT_EQ(node_receive_wanted(node, 0), 6);
+
+    EXPECT_EQ(node_receive(node, list_nodes.data(), 7, 0), 7);
+    EXPECT_EQ(node_receive_wanted(node, 0), 1);
+    EXPECT_EQ(node_receive_wanted(node, 10000), 6); // ten seconds later
+    EXPECT_EQ(node->errors.truncated, 1);
+    ASSERT_EQ(harness.frames.size(), 1u);
+    EXPECT_EQ(hex(harness.frames[0]), hex(node_present));
+}
+
 TEST(NodeReceive, ClockWrapAroundIsNotAStall)
 {
     Harness harness(preset("tiny"), 1);
