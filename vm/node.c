@@ -329,18 +329,21 @@ bool node_poll(node_state *node, uint32_t now_ms)
 
     expire_partial_frame(node, now_ms);
     vm_run(&node->vm, NODE_STEP_BUDGET);
-    // A description is sent a frame per poll, and only while no received
-    // frame waits: sending the whole of it (some 65 frames, 0.17 s at
-    // 115,200 baud) at once would leave a robot's receive buffer to fill
-    // meanwhile with what other robots and hosts send, beyond its size.
+    // A description goes out only at a poll that found no received frame,
+    // NODE_DESCRIPTION_FRAMES_PER_POLL frames at a time: on a slow link,
+    // sending all of it (some 65 frames, 0.17 s at 115,200 baud) at once
+    // would leave a robot's receive buffer to fill meanwhile with what other
+    // robots and hosts send. Received frames are handled first, one a poll.
     if (node->frame_ready) {
         handle_frame(node);
         node->frame_ready = false;
         node->received = 0;
-        describing = node->description_left != 0;
     } else {
-        describing = node_continue_description(node);
+        uint16_t sent = 0;
+        while (sent < NODE_DESCRIPTION_FRAMES_PER_POLL && node_continue_description(node))
+            sent++;
     }
+    describing = node->description_left != 0;
     start_local_event(node);
 
     running = vm_is_event_active(vm) && !(vm->flags & VM_FLAG_STEP_BY_STEP);

@@ -10,6 +10,13 @@
 //                               transport in pieces of at most this many
 //                               bytes, so the node needs no buffer of a
 //                               whole frame for sending
+//   NODE_DESCRIPTION_FRAMES_PER_POLL
+//                               frames of a description sent per node_poll
+//                               that found no received frame: 1 where the
+//                               link is slow beside the receive buffer (the
+//                               e-puck's UART), the whole description (as
+//                               one answer, as hosts expect) where sending
+//                               never waits
 
 #ifndef NODE_CONFIG_H
 #define NODE_CONFIG_H
@@ -17,9 +24,9 @@
 #include "vm_config.h"
 
 #if !defined(NODE_INTER_BYTE_TIMEOUT_MS) || !defined(NODE_STEP_BUDGET) ||                          \
-  !defined(NODE_TRANSMIT_CHUNK)
+  !defined(NODE_TRANSMIT_CHUNK) || !defined(NODE_DESCRIPTION_FRAMES_PER_POLL)
 #error                                                                                             \
-  "the target's configuration must give NODE_INTER_BYTE_TIMEOUT_MS, NODE_STEP_BUDGET and NODE_TRANSMIT_CHUNK"
+  "the target's configuration must give NODE_INTER_BYTE_TIMEOUT_MS, NODE_STEP_BUDGET, NODE_TRANSMIT_CHUNK and NODE_DESCRIPTION_FRAMES_PER_POLL"
 #endif
 
 #endif

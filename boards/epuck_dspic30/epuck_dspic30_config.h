@@ -38,6 +38,9 @@
 #define NODE_INTER_BYTE_TIMEOUT_MS 500  // as GCtronic's e-puck firmware
 #define NODE_STEP_BUDGET           1000 // as upstream's microcontroller glue
 #define NODE_TRANSMIT_CHUNK        32   // one piece of a frame on its way out
+// One description frame per poll, between the received frames: the whole
+// of it (0.17 s) let the receive ring overflow (docs/dspic30-sim.md).
+#define NODE_DESCRIPTION_FRAMES_PER_POLL 1
 
 // --- clock (§1.6) ---------------------------------------------------------------
 #define DSPIC30_CRYSTAL_HZ       7372800ul

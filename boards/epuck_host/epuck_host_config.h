@@ -33,6 +33,9 @@
 #define NODE_INTER_BYTE_TIMEOUT_MS 500  // as GCtronic's e-puck firmware
 #define NODE_STEP_BUDGET           1000 // as upstream's microcontroller glue
 #define NODE_TRANSMIT_CHUNK        32   // one piece of a frame on its way out
+// The whole description at once: the network never makes sending wait,
+// and hosts (asebamassloader) expect a node's description in one piece.
+#define NODE_DESCRIPTION_FRAMES_PER_POLL 0xFFFF
 
 // Simulated time counts the e-puck's instruction cycles, so that timers and
 // ADC scans fall at the robot's cycles: 7.3728 MHz × 8 (PLL) / 4 (hardware

@@ -32,6 +32,8 @@
 #define NODE_INTER_BYTE_TIMEOUT_MS 500  // as GCtronic's e-puck firmware
 #define NODE_STEP_BUDGET           1000 // as upstream's microcontroller glue
 #define NODE_TRANSMIT_CHUNK        32   // one piece of a frame on its way out
+// The whole description at once: the transmit ring holds all of it.
+#define NODE_DESCRIPTION_FRAMES_PER_POLL 0xFFFF
 
 // --- clock -------------------------------------------------------------------------
 // The core clock SysTick counts: QEMU's STM32F405 model runs its CPU clock at
