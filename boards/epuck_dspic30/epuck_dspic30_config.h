@@ -159,7 +159,6 @@
 // VSYNC is taken as active during the window's rows (the PO3030K table's
 // VSYNC start and stop rows are the window's), HREF during a row's bytes.
 #define DSPIC30_CAMERA_SYNC_ACTIVE_LEVEL 1
-#define DSPIC30_CAMERA_PCLK_LATCH_LEVEL  1
 // The library's capture reads a row with a loop of exactly 8 instruction
 // cycles per byte (§3.5); dspic30_camera_row.c does the same, its loop
 // written for this value (checked there).

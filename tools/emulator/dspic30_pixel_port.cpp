@@ -7,9 +7,10 @@ namespace aseba::arena
 namespace
 {
 
-// The levels boards/epuck_dspic30/epuck_dspic30_config.h takes
-// (DSPIC30_CAMERA_SYNC_ACTIVE_LEVEL, DSPIC30_CAMERA_PCLK_LATCH_LEVEL); that
-// header cannot be read beside the host board's, which host_world.h brings.
+// The sync level boards/epuck_dspic30/epuck_dspic30_config.h takes
+// (DSPIC30_CAMERA_SYNC_ACTIVE_LEVEL; that header cannot be read beside the
+// host board's, which host_world.h brings), and PCLK's, which no firmware
+// reads now (the row is read by the instructions' timing).
 constexpr bool sync_active_level = true;
 constexpr bool pclk_latch_level = true;
 
