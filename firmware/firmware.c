@@ -122,6 +122,7 @@ void firmware_init(firmware_state *firmware,
     robot_variables_at_boot(&firmware->variables.named);
     firmware->timer_period_ms = 0;
     firmware->next_timer_ms = 0;
+    firmware->sensed_ms = (uint16_t)(hal_milliseconds(board) - 1u);
     start_stored_program(firmware);
 }
 
@@ -160,7 +161,14 @@ bool firmware_poll(firmware_state *firmware)
     bool busy;
 
     robot_actuate(firmware->robot, &firmware->variables.named);
-    raise_local_events(firmware, robot_sense(firmware->robot, &firmware->variables.named));
+    // The sensors' values change with time only (the chip's interrupts fill
+    // them in, the host's world moves between milliseconds): a pass within
+    // the same millisecond would read them again for nothing, and a node
+    // busy with a stream of messages passes many times a millisecond.
+    if ((uint16_t)now != firmware->sensed_ms) {
+        firmware->sensed_ms = (uint16_t)now;
+        raise_local_events(firmware, robot_sense(firmware->robot, &firmware->variables.named));
+    }
     update_timer(firmware, now);
 
     busy = node_poll(&firmware->node, now);

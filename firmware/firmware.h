@@ -39,6 +39,9 @@ typedef struct firmware_state {
     // next due time.
     int16_t timer_period_ms;
     uint32_t next_timer_ms;
+    // The millisecond of the last reading of the robot's sensors (its low
+    // bits): they are read once a millisecond, not at every pass.
+    uint16_t sensed_ms;
 } firmware_state;
 
 // Starts the robot's devices on `board` and the node as `node_id`
@@ -51,8 +54,9 @@ void firmware_init(firmware_state *firmware,
                    robot_devices *robot,
                    uint16_t node_id);
 
-// One pass of the main loop: link, variables to the robot and back, local
-// events, VM. Never waits, except when the node sends more than the link's
+// One pass of the main loop: link, variables to the robot, its sensors'
+// values to the variables and local events (at the first pass of each
+// millisecond), VM. Never waits, except when the node sends more than the link's
 // transmit buffer holds at once (on the e-puck, any frame over 32 bytes): it
 // then waits for the buffer to drain. Returns whether more work is waiting
 // (when false the caller may idle until the next input or tick).

@@ -93,30 +93,6 @@ static void expire_partial_frame(node_state *node, uint32_t now_ms)
     }
 }
 
-bool node_receive_byte(node_state *node, uint8_t byte, uint32_t now_ms)
-{
-    uint8_t *bytes = (uint8_t *)node->frame;
-
-    if (node->frame_ready)
-        return false;
-    expire_partial_frame(node, now_ms);
-    node->last_byte_ms = now_ms;
-    if (node->resynchronising)
-        return true;
-    bytes[node->received++] = byte;
-    if (node->received < NODE_HEADER_SIZE)
-        return true;
-    if (frame_word(node, FRAME_LENGTH) > NODE_MAX_PAYLOAD) {
-        count_error(&node->errors.oversize);
-        node->received = 0;
-        node->resynchronising = true;
-        return true;
-    }
-    if (node->received == NODE_HEADER_SIZE + frame_word(node, FRAME_LENGTH))
-        node->frame_ready = true;
-    return true;
-}
-
 bool node_receive_ready(const node_state *node)
 {
     return !node->frame_ready;
@@ -137,11 +113,42 @@ uint16_t node_receive_wanted(node_state *node, uint32_t now_ms)
 
 uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, uint32_t now_ms)
 {
+    uint8_t *frame = (uint8_t *)node->frame;
     uint16_t taken = 0;
 
-    while (taken < count && node_receive_byte(node, bytes[taken], now_ms))
-        taken++;
+    // A part at a time: the header, then the payload its length announces
+    // (what node_receive_wanted asks for), not a byte at a time.
+    while (taken < count) {
+        uint16_t part = node_receive_wanted(node, now_ms);
+
+        if (part == 0)
+            break;
+        node->last_byte_ms = now_ms;
+        if (node->resynchronising) { // dropped until a silence
+            taken = count;
+            break;
+        }
+        if (part > count - taken)
+            part = (uint16_t)(count - taken);
+        taken = (uint16_t)(taken + part);
+        while (part-- > 0)
+            frame[node->received++] = *bytes++;
+        if (node->received < NODE_HEADER_SIZE)
+            continue;
+        if (frame_word(node, FRAME_LENGTH) > NODE_MAX_PAYLOAD) {
+            count_error(&node->errors.oversize);
+            node->received = 0;
+            node->resynchronising = true;
+        } else if (node->received == NODE_HEADER_SIZE + frame_word(node, FRAME_LENGTH)) {
+            node->frame_ready = true;
+        }
+    }
     return taken;
+}
+
+bool node_receive_byte(node_state *node, uint8_t byte, uint32_t now_ms)
+{
+    return node_receive(node, &byte, 1, now_ms) == 1;
 }
 
 // --- handling a frame --------------------------------------------------------

@@ -629,7 +629,8 @@ int run_arena(const Options &options,
               arena, options.listen_address, options.arena_feed);
         });
     aseba::host::NetworkStatus status(program.definitions.events);
-    network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
+    if (!options.quiet) // the status line is the only reader of the counts
+        network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
     MemoryFiles memories(options, simulation.robot_count(), [&](size_t i) -> host_robot & {
         return simulation.robot(i);
     });
@@ -758,7 +759,8 @@ int main(int argc, char **argv)
         });
     });
     aseba::host::NetworkStatus status(program.definitions.events);
-    network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
+    if (!options.quiet) // the status line is the only reader of the counts
+        network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
     MemoryFiles memories(
       options, robots.size(), [&](size_t i) -> host_robot & { return *robots[i]; });
 

@@ -487,10 +487,12 @@ struct Network::State final : Bus {
             for (auto &board : boards)
                 if (board.get() != &from)
                     enqueue(*board, robots_source, shared);
-        } else {
+        } else if (observer) {
             // No other board keeps it: the observer sees a reused buffer.
             observed.assign(frame.bytes, frame.bytes + frame.size);
             count(observed);
+        } else {
+            frames_moved++;
         }
         send_to_clients(&from, nullptr, frame);
     }
