@@ -57,29 +57,77 @@ includes=(-I. -Ivm -Inative_functions -isystem /usr/include/aseba
 
 for target in "${targets[@]}"; do
     [ -n "${sources[$target]:-}" ] || { echo "fuzz: unknown target '$target'" >&2; exit 2; }
-    out=$build/fuzz/$target
-    mkdir -p "$out/obj" "$out/corpus"
-    objects=()
-    # C files as the host build compiles them, with the host target's
-    # configuration (the VM with computed goto).
-    for source in ${sources[$target]}; do
-        object=$out/obj/$(echo "$source" | tr / _).o
-        case $source in
-        *.c) clang -std=gnu99 -Wall -Wextra -Werror "${sanitize[@]}" -fsanitize=fuzzer-no-link \
-                 "${includes[@]}" -c "$source" -o "$object" ;;
-        *.cpp) clang++ -std=c++20 "${cxx_defines[@]}" -Wall -Wextra -Werror "${sanitize[@]}" \
-                 -fsanitize=fuzzer-no-link "${includes[@]}" -c "$source" -o "$object" ;;
-        esac
-        objects+=("$object")
-    done
+done
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# Every source once, whichever targets share it (the compiler's library
+# is in five), several at a time: C files as the host build compiles them,
+# with the host target's configuration (the VM with computed goto).
+objects_dir=$build/fuzz/obj
+mkdir -p "$objects_dir"
+object_of() { echo "$objects_dir/$(echo "$1" | tr / _).o"; }
+compile() { # source
+    local object
+    object=$(object_of "$1")
+    case $1 in
+    *.c) clang -std=gnu99 -Wall -Wextra -Werror "${sanitize[@]}" -fsanitize=fuzzer-no-link \
+             "${includes[@]}" -c "$1" -o "$object" ;;
+    *.cpp) clang++ -std=c++20 "${cxx_defines[@]}" -Wall -Wextra -Werror "${sanitize[@]}" \
+             -fsanitize=fuzzer-no-link "${includes[@]}" -c "$1" -o "$object" ;;
+    esac
+}
+# shellcheck disable=SC2207 # sources are words
+all_sources=($(for target in "${targets[@]}"; do printf '%s\n' ${sources[$target]}; done | sort -u))
+echo "fuzz: compiling ${#all_sources[@]} sources for ${#targets[@]} targets"
+pending=0
+for source in "${all_sources[@]}"; do
+    compile "$source" &
+    pending=$((pending + 1))
+    if [ "$pending" -ge "$jobs" ]; then
+        wait -n || { echo "fuzz: a source did not compile" >&2; wait; exit 1; }
+        pending=$((pending - 1))
+    fi
+done
+while [ "$pending" -gt 0 ]; do
+    wait -n || { echo "fuzz: a source did not compile" >&2; wait; exit 1; }
+    pending=$((pending - 1))
+done
+
+# Links and runs one target; its lines go to its log's summary.
+fuzz_one() { # target
+    local target=$1 out=$build/fuzz/$1 objects=() source
+    mkdir -p "$out/corpus"
+    for source in ${sources[$target]}; do objects+=("$(object_of "$source")"); done
     # shellcheck disable=SC2086 # link flags are words
     clang++ "${sanitize[@]}" -fsanitize=fuzzer "${objects[@]}" ${link_flags[$target]} \
-        -o "$out/fuzzer"
-    echo "fuzz: $target for $seconds s"
+        -o "$out/fuzzer" || return 1
     # shellcheck disable=SC2086 # seed folders are words
-    "$out/fuzzer" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" -max_len="${max_length[$target]}" \
-        -artifact_prefix="$out/" -print_final_stats=1 "$out/corpus" ${seeds[$target]:-} \
-        2>"$out/log" ||
-        { tail -n 40 "$out/log"; echo "fuzz: $target found a crash, kept in $out/" >&2; exit 1; }
-    grep -E "stat::number_of_executed_units|Done [0-9]+ runs" "$out/log" | tail -n 1
+    if ! "$out/fuzzer" -seed="${FUZZ_SEED:-1}" -max_total_time="$seconds" \
+        -max_len="${max_length[$target]}" -artifact_prefix="$out/" -print_final_stats=1 \
+        "$out/corpus" ${seeds[$target]:-} 2>"$out/log"; then
+        tail -n 40 "$out/log"
+        echo "fuzz: $target found a crash, kept in $out/" >&2
+        return 1
+    fi
+    echo "fuzz: $target for $seconds s: $(grep -E "stat::number_of_executed_units|Done [0-9]+ runs" \
+        "$out/log" | tail -n 1)"
+}
+
+# The targets, as many at a time as there are processors (each fuzzer is
+# one process): the same time per target, in a fraction of the wall clock.
+echo "fuzz: ${#targets[@]} targets for $seconds s each, $jobs at a time"
+failed=0
+pending=0
+for target in "${targets[@]}"; do
+    fuzz_one "$target" &
+    pending=$((pending + 1))
+    if [ "$pending" -ge "$jobs" ]; then
+        wait -n || failed=1
+        pending=$((pending - 1))
+    fi
 done
+while [ "$pending" -gt 0 ]; do
+    wait -n || failed=1
+    pending=$((pending - 1))
+done
+exit $failed
