@@ -760,6 +760,7 @@ EnkiEpuck &EnkiWorld::robot(size_t index)
 
 void EnkiWorld::set_parallel_for(PartitionedWorld::ParallelFor parallel_for)
 {
+    parallel_for_ = parallel_for;
     world_->set_parallel_for(std::move(parallel_for));
 }
 
@@ -804,26 +805,38 @@ void EnkiWorld::step()
         robots_[i]->rightSpeed = state.wheel_speed[right_motor];
     }
     world_->step(step_seconds);
-    for (size_t i = 0; i < robots_.size(); i++) {
-        RobotState &state = *states_[i];
-        Enki::Vector impact = robots_[i]->impact;
-        double period = shock_period_at(robots_[i]->pos);
-        state.shock_clock = period > 0 ? state.shock_clock + step_seconds : 0;
-        if (period > 0 && state.shock_clock >= period - step_seconds / 2) {
-            state.shock_clock = 0;
-            double heading = robots_[i]->angle;
-            impact = Enki::Vector(std::cos(heading), std::sin(heading)) * -knock_acceleration;
-        }
-        if (impact.x != 0 || impact.y != 0) {
-            state.impact = impact;
-            state.impact_steps_left = impact_steps;
-        } else if (state.impact_steps_left > 0 && --state.impact_steps_left == 0) {
-            state.impact = Enki::Vector();
-        }
-        update_readings(state);
-    }
+    // Each robot's readings from its own body and state alone: the robots
+    // may be shared out among threads.
+    auto read_robots = [this](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; i++)
+            read_robot(i);
+    };
+    if (parallel_for_)
+        parallel_for_(robots_.size(), read_robots);
+    else
+        read_robots(0, robots_.size());
     build_robot_grid();
     steps_++;
+}
+
+void EnkiWorld::read_robot(size_t i)
+{
+    RobotState &state = *states_[i];
+    Enki::Vector impact = robots_[i]->impact;
+    double period = shock_period_at(robots_[i]->pos);
+    state.shock_clock = period > 0 ? state.shock_clock + step_seconds : 0;
+    if (period > 0 && state.shock_clock >= period - step_seconds / 2) {
+        state.shock_clock = 0;
+        double heading = robots_[i]->angle;
+        impact = Enki::Vector(std::cos(heading), std::sin(heading)) * -knock_acceleration;
+    }
+    if (impact.x != 0 || impact.y != 0) {
+        state.impact = impact;
+        state.impact_steps_left = impact_steps;
+    } else if (state.impact_steps_left > 0 && --state.impact_steps_left == 0) {
+        state.impact = Enki::Vector();
+    }
+    update_readings(state);
 }
 
 void EnkiWorld::update_readings(RobotState &state)

@@ -240,6 +240,8 @@ class EnkiWorld
     void build_robot_grid();
 
     double shock_period_at(const Enki::Point &point) const;
+    // After Enki's step: robot `index`'s shocks, impacts and readings.
+    void read_robot(size_t index);
     // Works out the robot's ADC readings from the world after a step.
     void update_readings(RobotState &state);
     // Places the robot's microphones where its body is now.
@@ -262,6 +264,7 @@ class EnkiWorld
     long robot_columns_ = 1, robot_rows_ = 1;
     std::vector<uint32_t> robot_cell_starts_;
     std::vector<uint32_t> robot_cells_;
+    PartitionedWorld::ParallelFor parallel_for_;
 };
 
 // Converts an Enki IR value (0..3731, as a real sensor's reflected light)
