@@ -53,6 +53,10 @@ constexpr double camera_height = 2.2;
 constexpr double camera_horizontal_field = 56 * radians_per_degree;
 constexpr double camera_vertical_field = 42 * radians_per_degree;
 constexpr double camera_horizon_range = 40;
+// The cells in which the camera looks for the robots near its lens (cm):
+// about as wide as the floor rays of the default tilt reach (2 to 14 cm)
+// with a robot's radius.
+constexpr double camera_cell_size = 10;
 constexpr unsigned camera_window_rows = 120;
 constexpr unsigned camera_row_pixels = 120;
 constexpr unsigned camera_row_bytes = 2 * camera_row_pixels;
@@ -216,17 +220,26 @@ unsigned motors_turning(const RobotState &state)
     return turning;
 }
 
+// Which phase index each pattern of a motor's lines (bit 3 = A .. bit 0 =
+// D) shows; -1: none (coils off, or half-way through writing the lines).
+constexpr std::array<int8_t, 16> phase_of_pattern = [] {
+    std::array<int8_t, 16> table{};
+    table.fill(-1);
+    for (int index = 0; index < phase_count; index++)
+        table[phase_patterns[index]] = int8_t(index);
+    return table;
+}();
+
 // A motor's phase lines changed: when they show the next pattern of the
 // sequence, or the one before, the motor made a step.
 void phase_written(RobotState &state, Motor motor, epuck_pin first)
 {
-    uint8_t pattern = 0;
-    for (int line = 0; line < phase_count; line++)
-        pattern = uint8_t(pattern << 1 | (state.output[first + line] ? 1 : 0));
-    const uint8_t *found = std::find(phase_patterns, phase_patterns + phase_count, pattern);
-    if (found == phase_patterns + phase_count)
-        return; // coils off, or half-way through writing the lines
-    int index = int(found - phase_patterns);
+    const unsigned pattern =
+      unsigned(state.output[first]) << 3 | unsigned(state.output[first + 1]) << 2 |
+      unsigned(state.output[first + 2]) << 1 | unsigned(state.output[first + 3]);
+    const int index = phase_of_pattern[pattern];
+    if (index < 0)
+        return;
     int change = (index - state.phase[motor] + phase_count) % phase_count;
     state.phase[motor] = index;
     // The motors are mirror-mounted: forward steps the left motor's phase
@@ -383,69 +396,130 @@ void FreshIRSensor::start_step(const Enki::Matrix22 &owner_rotation)
 {
     // Debian's IRSensor::init, operation for operation (the same values
     // bit for bit), with the rotation given.
-    std::fill(rayDists.begin(), rayDists.end(), range);
     absPos = owner->pos + owner_rotation * pos;
     absOrientation = owner->angle + orientation;
-    for (size_t i = 0; i < rayCount; i++)
-        absRayAngles[i] = absOrientation + rayAngles[i];
     absSmartPos = owner_rotation * smartPos + absPos;
-    // Debian's Enki forgets this (upstream fix 7dbaa0b): without it a ray
-    // that meets nothing this step keeps last step's value.
-    std::fill(rayValues.begin(), rayValues.end(), 0.0);
-    for (unsigned i = 0; i < ray_count; i++)
+    for (unsigned i = 0; i < ray_count; i++) {
+        rayDists[i] = range;
+        // Debian's Enki forgets this (upstream fix 7dbaa0b): without it a
+        // ray that meets nothing this step keeps last step's value.
+        rayValues[i] = 0.0;
+        absRayAngles[i] = absOrientation + rayAngles[i];
         world_ray_directions_[i] = owner_rotation * ray_directions_[i];
+    }
 }
 
 void FreshIRSensor::objectStep(double dt, Enki::World *world, Enki::PhysicalObject *object)
 {
-    // Debian's IRSensor::objectStep, operation for operation where it
-    // computes, with the rays that cannot reach the object skipped.
     if (height > object->getHeight())
         return;
+    see(dt, world, object, object->getRadius(), object->isCylindric());
+}
+
+inline void FreshIRSensor::see(double dt,
+                               Enki::World *world,
+                               Enki::PhysicalObject *object,
+                               double radius,
+                               bool cylindric)
+{
+    // Debian's IRSensor::objectStep for boxes; for cylinders, the same
+    // geometry without its trigonometry (see enki_world.hpp). The object
+    // is as tall as the sensor or taller.
     // The object's bounding circle beyond the circle around the rays.
-    const double radius = object->getRadius();
     const Enki::Vector from_rays_middle = object->pos - absSmartPos;
     const double radius_sum = radius + smartRadius;
     if (from_rays_middle.norm2() > radius_sum * radius_sum)
         return;
-    // A ray goes on only if its line passes within the bounding circle, at
-    // a distance whose square Enki works out as |v|² sin²(ray angle -
-    // atan2(v)). The cross product with the ray's direction gives it too;
-    // both are within about 1e-13 of the exact value at these distances,
-    // and the margin (1e-6 of it) is far wider: a ray skipped here is one
-    // that Enki's test rejects.
     const Enki::Vector to_centre = object->pos - absPos;
-    const double reach_squared = radius * radius * (1 + 1e-6) + 1e-9;
-    std::array<bool, ray_count> may_reach{};
-    bool any_may_reach = false;
+    const double squared_radius = radius * radius;
+    if (!cylindric) {
+        // A box (the obstacles, few): Enki's polygon test, for the rays
+        // whose line passes within the bounding circle (a margin of 1e-6
+        // of it wider than the difference between the cross product and
+        // Enki's arc tangent and sine, about 1e-13 at these distances).
+        const double reach_squared = squared_radius * (1 + 1e-6) + 1e-9;
+        for (unsigned i = 0; i < ray_count; i++) {
+            const Enki::Vector &direction = world_ray_directions_[i];
+            double across = direction.x * to_centre.y - direction.y * to_centre.x;
+            if (across * across <= reach_squared) {
+                Enki::IRSensor::objectStep(dt, world, object);
+                return;
+            }
+        }
+        return;
+    }
+    // A ray's line passes at `across` from the circle's centre (the cross
+    // product with its unit direction) and meets the circle at `along` (the
+    // dot product: Enki's sqrt(|v|^2 - across^2)) less the half chord. As
+    // in Enki, the line goes both ways from the sensor.
     for (unsigned i = 0; i < ray_count; i++) {
         const Enki::Vector &direction = world_ray_directions_[i];
-        double across = direction.x * to_centre.y - direction.y * to_centre.x;
-        may_reach[i] = across * across <= reach_squared;
-        any_may_reach = any_may_reach || may_reach[i];
-    }
-    if (!any_may_reach)
-        return;
-    if (!object->isCylindric()) {
-        // A box: Enki's polygon test (the obstacles, few).
-        Enki::IRSensor::objectStep(dt, world, object);
-        return;
-    }
-    // Enki's test of a circle, which works out the arc tangent again for
-    // every ray: the same value.
-    const double bearing = to_centre.angle();
-    const double squared_radius = radius * radius;
-    for (unsigned i = 0; i < ray_count; i++) {
-        if (!may_reach[i])
-            continue;
-        const double sine = std::sin(absRayAngles[i] - bearing);
-        const double across_squared = to_centre.norm2() * (sine * sine);
+        const double across = direction.x * to_centre.y - direction.y * to_centre.x;
+        const double across_squared = across * across;
         if (across_squared <= squared_radius) {
-            double distance = std::sqrt(to_centre.norm2() - across_squared) -
-                              std::sqrt(squared_radius - across_squared);
-            updateRay(i, std::max(distance, 0.));
+            const double along = std::abs(direction.x * to_centre.x + direction.y * to_centre.y);
+            update_ray(i, std::max(along - std::sqrt(squared_radius - across_squared), 0.));
         }
     }
+}
+
+void FreshIRSensor::wallsStep(double dt, Enki::World *world)
+{
+    if (world->wallsType != Enki::World::WALLS_SQUARE) {
+        Enki::IRSensor::wallsStep(dt, world);
+        return;
+    }
+    // Debian's IRSensor::wallsStep for square walls, with the rays'
+    // directions of this step instead of a sine and cosine a ray (the
+    // same up to rounding). Nothing while the circle around the rays is
+    // inside the walls.
+    if (absSmartPos.x - smartRadius > 0 && absSmartPos.y - smartRadius > 0 &&
+        absSmartPos.x + smartRadius < world->w && absSmartPos.y + smartRadius < world->h)
+        return;
+    if (absPos.x < 0 || absPos.x > world->w || absPos.y < 0 || absPos.y > world->h) {
+        // The sensor in a wall: Enki gives every ray the distance m (its
+        // response's maximum) and no value.
+        std::fill(rayDists.begin(), rayDists.end(), m);
+        std::fill(rayValues.begin(), rayValues.end(), 0.0);
+        return;
+    }
+    for (unsigned i = 0; i < ray_count; i++) {
+        // Where the ray, as long as the range, leaves through the walls it
+        // crosses, as a fraction of its length.
+        const Enki::Point end = absPos + world_ray_directions_[i] * range;
+        double through_x = HUGE_VAL, through_y = HUGE_VAL;
+        if (end.x < 0)
+            through_x = -absPos.x / (end.x - absPos.x);
+        else if (end.x > world->w)
+            through_x = (world->w - absPos.x) / (end.x - absPos.x);
+        if (end.y < 0)
+            through_y = -absPos.y / (end.y - absPos.y);
+        else if (end.y > world->h)
+            through_y = (world->h - absPos.y) / (end.y - absPos.y);
+        update_ray(i, std::min(through_x, through_y) * range);
+    }
+}
+
+void FreshIRSensor::update_ray(unsigned ray, double distance)
+{
+    // Debian's IRSensor::updateRay, operation for operation.
+    if (!(distance < rayDists[ray]))
+        return;
+    rayDists[ray] = distance;
+    rayValues[ray] = response(distance);
+    if (ray == 1)
+        rayValues[ray] -= 2 * response(distance * alpha);
+}
+
+double FreshIRSensor::response(double distance) const
+{
+    // Enki's response m (c - x0^2) / (x^2 - 2 x0 x + c), m below x0 and 0
+    // beyond the range, in Enki's operation order.
+    if (distance < x0)
+        return m;
+    if (distance > range)
+        return 0;
+    return m * (c - x0 * x0) / (distance * distance - 2 * x0 * distance + c);
 }
 
 namespace
@@ -511,16 +585,21 @@ void EnkiEpuck::initLocalInteractions(double dt, Enki::World *world)
 void EnkiEpuck::doLocalInteractions(double dt, Enki::World *world, Enki::PhysicalObject *object)
 {
     // Robot::doLocalInteractions in its arithmetic: the interactions in
-    // Enki's order (longest reach first) while the object is within reach.
+    // Enki's order (longest reach first) while the object is within reach;
+    // the object's size and shape read once for the IR sensors.
     const Enki::Vector from_object(pos.x - object->pos.x, pos.y - object->pos.y);
+    const double distance_squared = from_object.norm2();
+    const double radius = object->getRadius();
+    const bool ir_sees = !(ir_height > object->getHeight());
+    const bool cylindric = object->isCylindric();
     for (Enki::LocalInteraction *interaction : localInteractions) {
-        const double reach = interaction->getRange() + object->getRadius();
-        if (!(from_object.norm2() < reach * reach))
+        const double reach = interaction->getRange() + radius;
+        if (!(distance_squared < reach * reach))
             return;
         if (interaction == &camera)
             interaction->objectStep(dt, world, object);
-        else
-            static_cast<FreshIRSensor *>(interaction)->FreshIRSensor::objectStep(dt, world, object);
+        else if (ir_sees)
+            static_cast<FreshIRSensor *>(interaction)->see(dt, world, object, radius, cylindric);
     }
 }
 
@@ -637,7 +716,21 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
         object->angle = obstacle.heading_degrees * radians_per_degree;
         obstacles_.push_back(object);
         world_->addObject(object);
+
+        Occluder occluder;
+        occluder.box = obstacle.shape == Obstacle::Shape::box;
+        occluder.centre = Enki::Point(obstacle.x, obstacle.y);
+        occluder.half_length = obstacle.length / 2;
+        occluder.half_width = obstacle.width / 2;
+        const double heading = obstacle.heading_degrees * radians_per_degree;
+        occluder.cosine = std::cos(heading);
+        occluder.sine = std::sin(heading);
+        occluder.radius =
+          occluder.box ? std::hypot(occluder.half_length, occluder.half_width) : obstacle.radius;
+        occluder.color = obstacle.color;
+        obstacle_occluders_.push_back(occluder);
     }
+    build_robot_grid();
 }
 
 EnkiWorld::~EnkiWorld()
@@ -667,7 +760,35 @@ EnkiEpuck &EnkiWorld::robot(size_t index)
 
 void EnkiWorld::set_parallel_for(PartitionedWorld::ParallelFor parallel_for)
 {
+    parallel_for_ = parallel_for;
     world_->set_parallel_for(std::move(parallel_for));
+}
+
+void EnkiWorld::build_robot_grid()
+{
+    robot_cell_size_ = camera_cell_size;
+    robot_columns_ = std::max(1L, long(std::ceil(arena_.width / robot_cell_size_)));
+    robot_rows_ = std::max(1L, long(std::ceil(arena_.height / robot_cell_size_)));
+    auto cell_of = [this](double at, long count) {
+        return long(std::clamp(std::floor(at / robot_cell_size_), 0.0, double(count - 1)));
+    };
+    // Counting sort of the robots by cell, ascending within.
+    robot_cell_starts_.assign(size_t(robot_columns_ * robot_rows_) + 1, 0);
+    robot_cells_.resize(robots_.size());
+    thread_local std::vector<uint32_t> cells;
+    cells.resize(robots_.size());
+    for (size_t i = 0; i < robots_.size(); i++) {
+        const Enki::Point &at = robots_[i]->pos;
+        cells[i] =
+          uint32_t(cell_of(at.y, robot_rows_) * robot_columns_ + cell_of(at.x, robot_columns_));
+        robot_cell_starts_[cells[i] + 1]++;
+    }
+    for (size_t c = 1; c < robot_cell_starts_.size(); c++)
+        robot_cell_starts_[c] += robot_cell_starts_[c - 1];
+    thread_local std::vector<uint32_t> fill;
+    fill.assign(robot_cell_starts_.begin(), robot_cell_starts_.end() - 1);
+    for (size_t i = 0; i < robots_.size(); i++)
+        robot_cells_[fill[cells[i]]++] = uint32_t(i);
 }
 
 void EnkiWorld::step()
@@ -684,25 +805,38 @@ void EnkiWorld::step()
         robots_[i]->rightSpeed = state.wheel_speed[right_motor];
     }
     world_->step(step_seconds);
-    for (size_t i = 0; i < robots_.size(); i++) {
-        RobotState &state = *states_[i];
-        Enki::Vector impact = robots_[i]->impact;
-        double period = shock_period_at(robots_[i]->pos);
-        state.shock_clock = period > 0 ? state.shock_clock + step_seconds : 0;
-        if (period > 0 && state.shock_clock >= period - step_seconds / 2) {
-            state.shock_clock = 0;
-            double heading = robots_[i]->angle;
-            impact = Enki::Vector(std::cos(heading), std::sin(heading)) * -knock_acceleration;
-        }
-        if (impact.x != 0 || impact.y != 0) {
-            state.impact = impact;
-            state.impact_steps_left = impact_steps;
-        } else if (state.impact_steps_left > 0 && --state.impact_steps_left == 0) {
-            state.impact = Enki::Vector();
-        }
-        update_readings(state);
-    }
+    // Each robot's readings from its own body and state alone: the robots
+    // may be shared out among threads.
+    auto read_robots = [this](size_t begin, size_t end) {
+        for (size_t i = begin; i < end; i++)
+            read_robot(i);
+    };
+    if (parallel_for_)
+        parallel_for_(robots_.size(), read_robots);
+    else
+        read_robots(0, robots_.size());
+    build_robot_grid();
     steps_++;
+}
+
+void EnkiWorld::read_robot(size_t i)
+{
+    RobotState &state = *states_[i];
+    Enki::Vector impact = robots_[i]->impact;
+    double period = shock_period_at(robots_[i]->pos);
+    state.shock_clock = period > 0 ? state.shock_clock + step_seconds : 0;
+    if (period > 0 && state.shock_clock >= period - step_seconds / 2) {
+        state.shock_clock = 0;
+        double heading = robots_[i]->angle;
+        impact = Enki::Vector(std::cos(heading), std::sin(heading)) * -knock_acceleration;
+    }
+    if (impact.x != 0 || impact.y != 0) {
+        state.impact = impact;
+        state.impact_steps_left = impact_steps;
+    } else if (state.impact_steps_left > 0 && --state.impact_steps_left == 0) {
+        state.impact = Enki::Vector();
+    }
+    update_readings(state);
 }
 
 void EnkiWorld::update_readings(RobotState &state)
@@ -777,6 +911,7 @@ void EnkiWorld::place(size_t index, const Pose &pose)
     robot.pos = Enki::Point(pose.x, pose.y);
     robot.angle = pose.heading;
     place_microphones(*states_.at(index));
+    build_robot_grid();
 }
 
 double EnkiWorld::left_wheel_speed(size_t index) const
@@ -792,15 +927,7 @@ double EnkiWorld::right_wheel_speed(size_t index) const
 namespace
 {
 
-// Something a floor ray may meet before the floor: a robot or an obstacle,
-// taller than the camera.
-struct Occluder {
-    bool box = false;
-    Enki::Point centre;
-    double radius = 0; // circle; for a box, its bounding circle
-    double half_length = 0, half_width = 0, heading = 0;
-    Color color;
-};
+using Occluder = EnkiWorld::Occluder;
 
 constexpr double no_hit = HUGE_VAL;
 
@@ -820,7 +947,7 @@ double ray_entry(const Occluder &occluder, const Enki::Point &from, const Enki::
         return along - std::sqrt(discriminant);
     }
     // A box: the slab test in the box's own frame.
-    double c = std::cos(occluder.heading), s = std::sin(occluder.heading);
+    const double c = occluder.cosine, s = occluder.sine;
     double start[2] = { -(to_centre.x * c + to_centre.y * s),
                         -(-to_centre.x * s + to_centre.y * c) };
     double step[2] = { direction.x * c + direction.y * s, -direction.x * s + direction.y * c };
@@ -906,34 +1033,53 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
     double reach = camera_height / std::tan(depression);
     Enki::Vector forward(std::cos(robot.angle), std::sin(robot.angle));
     Enki::Point lens = robot.pos + forward * camera_forward;
-    std::vector<Occluder> near;
+    // The robots and obstacles that may stand nearer than the floor, in
+    // arena order (robots by index, then obstacles): the nearest wins, the
+    // first of a tie.
+    thread_local std::vector<uint32_t> candidates;
+    thread_local std::vector<Occluder> near;
+    candidates.clear();
+    near.clear();
     const double robot_reach = reach + body_radius;
-    for (size_t other = 0; other < robots_.size(); other++) {
-        // The square test first: beyond it, the distance is beyond too.
-        Enki::Vector offset = robots_[other]->pos - lens;
-        if (other == index || std::abs(offset.x) > robot_reach ||
-            std::abs(offset.y) > robot_reach || offset.norm() > robot_reach)
-            continue;
+    auto cell_of = [this](double at, long count) {
+        return long(std::clamp(std::floor(at / robot_cell_size_), 0.0, double(count - 1)));
+    };
+    // A robot's centre lies in its cell, or in the border cell nearest to
+    // it when pushed past a wall: either way within the cells around the
+    // lens's reach when it is within that reach (clamped before becoming
+    // whole: a row just below the horizon reaches very far).
+    const long x0 = cell_of(lens.x - robot_reach, robot_columns_);
+    const long x1 = cell_of(lens.x + robot_reach, robot_columns_);
+    const long y0 = cell_of(lens.y - robot_reach, robot_rows_);
+    const long y1 = cell_of(lens.y + robot_reach, robot_rows_);
+    for (long y = y0; y <= y1; y++)
+        for (long x = x0; x <= x1; x++) {
+            const size_t cell = size_t(y * robot_columns_ + x);
+            for (uint32_t k = robot_cell_starts_[cell]; k < robot_cell_starts_[cell + 1]; k++) {
+                const uint32_t other = robot_cells_[k];
+                // The square test first: beyond it, the distance is beyond too.
+                const Enki::Vector offset = robots_[other]->pos - lens;
+                if (other == index || std::abs(offset.x) > robot_reach ||
+                    std::abs(offset.y) > robot_reach || offset.norm() > robot_reach)
+                    continue;
+                candidates.push_back(other);
+            }
+        }
+    std::sort(candidates.begin(), candidates.end());
+    for (uint32_t other : candidates) {
         Occluder occluder;
         occluder.centre = robots_[other]->pos;
         occluder.radius = body_radius;
         occluder.color = from_enki(body_color);
         near.push_back(occluder);
     }
-    for (size_t i = 0; i < obstacles_.size(); i++) {
-        const Obstacle &obstacle = arena_.obstacles[i];
-        Occluder occluder;
-        occluder.box = obstacle.shape == Obstacle::Shape::box;
-        occluder.centre = Enki::Point(obstacle.x, obstacle.y);
-        occluder.half_length = obstacle.length / 2;
-        occluder.half_width = obstacle.width / 2;
-        occluder.heading = obstacle.heading_degrees * radians_per_degree;
-        occluder.radius =
-          occluder.box ? std::hypot(occluder.half_length, occluder.half_width) : obstacle.radius;
-        occluder.color = obstacle.color;
+    for (const Occluder &occluder : obstacle_occluders_)
         if ((occluder.centre - lens).norm() <= reach + occluder.radius)
             near.push_back(occluder);
-    }
+    constexpr double wall_margin = 1e-6;
+    const bool floor_within_walls = lens.x - reach > wall_margin && lens.y - reach > wall_margin &&
+                                    lens.x + reach < arena_.width - wall_margin &&
+                                    lens.y + reach < arena_.height - wall_margin;
     const PixelRays &rays = pixel_rays();
     for (unsigned pixel = 0; pixel < camera_row_pixels; pixel += pixel_step) {
         // The pixel's ray turned by the robot's heading.
@@ -942,10 +1088,14 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
         double nearest = reach;
         Color color = arena_.wall_color;
         bool floor = true;
-        double wall = wall_distance(arena_, lens, direction);
-        if (wall < nearest) {
-            nearest = wall;
-            floor = false;
+        // With the whole circle of the floor's reach inside the walls, no
+        // wall stands nearer (the margin is far wider than the rounding).
+        if (!floor_within_walls) {
+            double wall = wall_distance(arena_, lens, direction);
+            if (wall < nearest) {
+                nearest = wall;
+                floor = false;
+            }
         }
         for (const Occluder &occluder : near) {
             double hit = ray_entry(occluder, lens, direction);

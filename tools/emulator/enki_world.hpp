@@ -43,10 +43,15 @@ namespace aseba::arena
 {
 
 // Enki's IR sensor with its rays cleared at the start of every step, so
-// that a value falls back once the obstacle has gone. It gives Enki's ray
-// distances and values bit for bit, but skips Enki's exact test (an arc
-// tangent and a sine a ray) for the rays that cannot reach an object, and
-// works out the arc tangent once for the others.
+// that a value falls back once the obstacle has gone. For a cylinder (a
+// robot, a post) it works out Enki's geometry without Enki's trigonometry
+// (an arc tangent and a sine a ray): where a ray's line passes from the
+// centre by a cross product with the ray's direction, and how far along by
+// a dot product, so that its distances differ from Enki's by rounding only
+// (about 1e-13 cm; docs/arena-format.md). Boxes go through Enki's own test,
+// for the rays that may reach them. The square walls likewise: Enki's
+// geometry with the rays' directions of the step rather than a sine and
+// cosine a ray.
 class FreshIRSensor : public Enki::IRSensor
 {
   public:
@@ -62,12 +67,24 @@ class FreshIRSensor : public Enki::IRSensor
                   double noise_sd);
     void init(double dt, Enki::World *world) override;
     void objectStep(double dt, Enki::World *world, Enki::PhysicalObject *object) override;
+    // objectStep for an object as tall as the sensor or taller, its radius
+    // and shape given.
+    void see(double dt,
+             Enki::World *world,
+             Enki::PhysicalObject *object,
+             double radius,
+             bool cylindric);
+    void wallsStep(double dt, Enki::World *world) override;
     // init() given the rotation of the owner's heading, shared by its sensors.
     void start_step(const Enki::Matrix22 &owner_rotation);
 
     static constexpr unsigned ray_count = 3;
 
   private:
+    // Enki's updateRay and responseFunction, inlined.
+    void update_ray(unsigned ray, double distance);
+    double response(double distance) const;
+
     // The rays' unit directions on the robot, and in the world this step.
     std::array<Enki::Vector, ray_count> ray_directions_;
     std::array<Enki::Vector, ray_count> world_ray_directions_;
@@ -206,8 +223,25 @@ class EnkiWorld
 
     struct RobotState; // per robot: motor phases, emitters, camera registers
 
+    // Something a camera's floor ray may meet before the floor: a robot or
+    // an obstacle, taller than the camera.
+    struct Occluder {
+        bool box = false;
+        Enki::Point centre;
+        double radius = 0; // circle; for a box, its bounding circle
+        double half_length = 0, half_width = 0;
+        double cosine = 1, sine = 0; // a box's heading
+        Color color;
+    };
+
   private:
+    // Buckets the robots' centres into square cells, for the camera to find
+    // the robots near its lens (after every move of the robots).
+    void build_robot_grid();
+
     double shock_period_at(const Enki::Point &point) const;
+    // After Enki's step: robot `index`'s shocks, impacts and readings.
+    void read_robot(size_t index);
     // Works out the robot's ADC readings from the world after a step.
     void update_readings(RobotState &state);
     // Places the robot's microphones where its body is now.
@@ -222,6 +256,15 @@ class EnkiWorld
     std::vector<Enki::PhysicalObject *> obstacles_;
     std::vector<std::unique_ptr<RobotState>> states_;
     uint64_t steps_ = 0;
+    // The obstacles as the camera sees them, in arena order.
+    std::vector<Occluder> obstacle_occluders_;
+    // The robots by cell: cell c holds robot_cells_[robot_cell_starts_[c]
+    // .. robot_cell_starts_[c + 1]), ascending.
+    double robot_cell_size_ = 1;
+    long robot_columns_ = 1, robot_rows_ = 1;
+    std::vector<uint32_t> robot_cell_starts_;
+    std::vector<uint32_t> robot_cells_;
+    PartitionedWorld::ParallelFor parallel_for_;
 };
 
 // Converts an Enki IR value (0..3731, as a real sensor's reflected light)
