@@ -86,7 +86,8 @@ class Connection
     Connection(const Connection &) = delete;
     Connection &operator=(const Connection &) = delete;
 
-    void send(uint16_t type, const std::vector<uint16_t> &words)
+    // Sends the frame `copies` times in one write.
+    void send(uint16_t type, const std::vector<uint16_t> &words, int copies = 1)
     {
         Frame frame;
         frame.source = aseba::client::HOST_SOURCE;
@@ -95,7 +96,10 @@ class Connection
             frame.payload.push_back(static_cast<uint8_t>(word & 0xFF));
             frame.payload.push_back(static_cast<uint8_t>(word >> 8));
         }
-        std::vector<uint8_t> bytes = aseba::client::serialize_frame(frame);
+        std::vector<uint8_t> one = aseba::client::serialize_frame(frame);
+        std::vector<uint8_t> bytes;
+        for (int copy = 0; copy < copies; copy++)
+            bytes.insert(bytes.end(), one.begin(), one.end());
         if (::send(socket_, bytes.data(), bytes.size(), MSG_NOSIGNAL) !=
             static_cast<ssize_t>(bytes.size()))
             throw std::runtime_error("send failed");
@@ -108,21 +112,41 @@ class Connection
             while (auto frame = frames_.next())
                 if (frame->type == type)
                     return *frame;
-            pollfd readable{ socket_, POLLIN, 0 };
-            if (::poll(&readable, 1, answer_timeout_ms) <= 0)
-                throw std::runtime_error("no answer of type " + std::to_string(type));
-            uint8_t buffer[4096];
-            ssize_t count = ::recv(socket_, buffer, sizeof buffer, 0);
-            if (count <= 0)
-                throw std::runtime_error("the node closed the connection");
-            frames_.feed(buffer, static_cast<size_t>(count));
-            // Acknowledge at once: a waiting client must not see delayed ACKs.
-            int on = 1;
-            setsockopt(socket_, IPPROTO_TCP, TCP_QUICKACK, &on, sizeof on);
+            read_more(type);
+        }
+    }
+
+    // Waits for frames of `type`, skipping others; returns how many came
+    // with the first (those already read, at least one).
+    int receive_some(uint16_t type)
+    {
+        for (;;) {
+            int count = 0;
+            while (auto frame = frames_.next())
+                count += frame->type == type;
+            if (count > 0)
+                return count;
+            read_more(type);
         }
     }
 
   private:
+    // Reads what has come (waiting for it up to the timeout) into the frames.
+    void read_more(uint16_t type)
+    {
+        pollfd readable{ socket_, POLLIN, 0 };
+        if (::poll(&readable, 1, answer_timeout_ms) <= 0)
+            throw std::runtime_error("no answer of type " + std::to_string(type));
+        uint8_t buffer[4096];
+        ssize_t count = ::recv(socket_, buffer, sizeof buffer, 0);
+        if (count <= 0)
+            throw std::runtime_error("the node closed the connection");
+        frames_.feed(buffer, static_cast<size_t>(count));
+        // Acknowledge at once: a waiting client must not see delayed ACKs.
+        int on = 1;
+        setsockopt(socket_, IPPROTO_TCP, TCP_QUICKACK, &on, sizeof on);
+    }
+
     int socket_ = -1;
     aseba::client::FrameAssembler frames_;
 };
@@ -208,13 +232,18 @@ int bench_node(bool reference)
     load_ping_pong(connection, reference ? aseba::dummy_target() : aseba::epuck_target());
     int sent = 0;
     auto begin = Clock::now();
-    for (; sent < event_window; sent++)
-        connection.send(ping_event, {});
-    for (int answered = 0; answered < event_count; answered++) {
-        connection.receive(pong_event);
-        if (sent < event_count) {
-            connection.send(ping_event, {});
-            sent++;
+    // As many pings in flight as the window, the ones answered since the
+    // last read sent again in one write: one write per ping made this client
+    // the limit of both nodes (each about 145,000 events a second here).
+    connection.send(ping_event, {}, event_window);
+    sent = event_window;
+    for (int answered = 0; answered < event_count;) {
+        int count = connection.receive_some(pong_event);
+        answered += count;
+        int more = std::min(count, event_count - sent);
+        if (more > 0) {
+            connection.send(ping_event, {}, more);
+            sent += more;
         }
     }
     double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
