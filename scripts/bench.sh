@@ -491,7 +491,7 @@ cores=$(nproc)
     echo "  time and divides the CPU time it used by N × seconds."
     echo "- Arena: \`epuck-emu --arena default --robots N --load examples/paper-annex.aesl"
     echo "  --speed max --duration S\` (one process, its default threads: one per core"
-    echo "  with 16 robots or more each); the factor is the simulated time over the"
+    echo "  with 64 robots or more each); the factor is the simulated time over the"
     echo "  wall-clock time of the run, setup excluded, as epuck-emu prints it when it"
     echo "  stops, $arena_runs runs for 100 and 1000 robots. The wall clock depends on what"
     echo "  else the computer runs: beside it, the simulated time over the processor"
