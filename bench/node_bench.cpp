@@ -4,8 +4,11 @@
 //   bench-node emu        epuck-emu with one robot (our node and firmware)
 //   bench-node reference  Debian's asebadummynode (the reference node library)
 //       prints: median round trip of GET_VARIABLES -> VARIABLES in us, the
-//       mean in us, and user events per second through a handler that
-//       answers each `ping` with a `pong` (at most `window` in flight).
+//       mean in us, user events per second through a handler that answers
+//       each `ping` with a `pong` (at most `window` in flight), and the
+//       number of messages the node answered in all.
+//       BENCH_NODE_UNDER: a command the node runs under (its words split at
+//       spaces), for example valgrind's, to count the node's instructions.
 //
 //   bench-node simulator ROBOTS SECONDS
 //       runs epuck-emu with ROBOTS robots running the paper's controller for
@@ -22,6 +25,7 @@
 #include <netinet/in.h>
 #include <netinet/tcp.h>
 #include <poll.h>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <sys/resource.h>
@@ -151,6 +155,20 @@ class Connection
     aseba::client::FrameAssembler frames_;
 };
 
+// The words of BENCH_NODE_UNDER, none if it is not set.
+const std::vector<std::string> &wrapper_words()
+{
+    static const std::vector<std::string> words = [] {
+        const char *under = std::getenv("BENCH_NODE_UNDER");
+        std::istringstream text(under ? under : "");
+        std::vector<std::string> split;
+        for (std::string word; text >> word;)
+            split.push_back(word);
+        return split;
+    }();
+    return words;
+}
+
 // The node process, started on a free port, stopped when this ends.
 struct NodeProcess {
     interop::ScratchFolder scratch;
@@ -169,6 +187,7 @@ struct NodeProcess {
             if (load)
                 argv.insert(argv.end(), { "--load", load });
         }
+        argv.insert(argv.begin(), wrapper_words().begin(), wrapper_words().end());
         if (reference) {
             // A probe connection would make asebadummynode deaf once it
             // closes: wait for the line it prints when it listens instead.
@@ -248,7 +267,11 @@ int bench_node(bool reference)
     }
     double seconds = std::chrono::duration<double>(Clock::now() - begin).count();
 
-    std::printf("%.1f\t%.1f\t%.0f\n", median(round_trips_us), mean_us, event_count / seconds);
+    std::printf("%.1f\t%.1f\t%.0f\t%d\n",
+                median(round_trips_us),
+                mean_us,
+                event_count / seconds,
+                warmup_rounds + latency_rounds + event_count);
     node.process->stop();
     return 0;
 }
