@@ -62,6 +62,25 @@ for target in "${targets[@]}"; do
 done
 jobs=$(nproc 2>/dev/null || echo 2)
 
+# Runs FUNCTION ITEM for each item, $jobs at a time; fails if one failed.
+in_parallel() { # function item...
+    local run=$1 item pending=0 status=0
+    shift
+    for item in "$@"; do
+        "$run" "$item" &
+        pending=$((pending + 1))
+        if [ "$pending" -ge "$jobs" ]; then
+            wait -n || status=1
+            pending=$((pending - 1))
+        fi
+    done
+    while [ "$pending" -gt 0 ]; do
+        wait -n || status=1
+        pending=$((pending - 1))
+    done
+    return $status
+}
+
 # Every source once, whichever targets share it (the compiler's library
 # is in five), several at a time: C files as the host build compiles them,
 # with the host target's configuration (the VM with computed goto).
@@ -81,19 +100,7 @@ compile() { # source
 # shellcheck disable=SC2207 # sources are words
 all_sources=($(for target in "${targets[@]}"; do printf '%s\n' ${sources[$target]}; done | sort -u))
 echo "fuzz: compiling ${#all_sources[@]} sources for ${#targets[@]} targets"
-pending=0
-for source in "${all_sources[@]}"; do
-    compile "$source" &
-    pending=$((pending + 1))
-    if [ "$pending" -ge "$jobs" ]; then
-        wait -n || { echo "fuzz: a source did not compile" >&2; wait; exit 1; }
-        pending=$((pending - 1))
-    fi
-done
-while [ "$pending" -gt 0 ]; do
-    wait -n || { echo "fuzz: a source did not compile" >&2; wait; exit 1; }
-    pending=$((pending - 1))
-done
+in_parallel compile "${all_sources[@]}" || { echo "fuzz: a source did not compile" >&2; exit 1; }
 
 # Links and runs one target; its lines go to its log's summary.
 fuzz_one() { # target
@@ -118,18 +125,4 @@ fuzz_one() { # target
 # The targets, as many at a time as there are processors (each fuzzer is
 # one process): the same time per target, in a fraction of the wall clock.
 echo "fuzz: ${#targets[@]} targets for $seconds s each, $jobs at a time"
-failed=0
-pending=0
-for target in "${targets[@]}"; do
-    fuzz_one "$target" &
-    pending=$((pending + 1))
-    if [ "$pending" -ge "$jobs" ]; then
-        wait -n || failed=1
-        pending=$((pending - 1))
-    fi
-done
-while [ "$pending" -gt 0 ]; do
-    wait -n || failed=1
-    pending=$((pending - 1))
-done
-exit $failed
+in_parallel fuzz_one "${targets[@]}"
