@@ -79,6 +79,31 @@ std::optional<FrameView> FrameReader::next()
     return FrameView{ start, length };
 }
 
+template<class Sink>
+bool FrameReader::read(const uint8_t *bytes, size_t count, Sink &&sink)
+{
+    size_t at = 0;
+    if (!broken_ && consumed_ == pending_.size()) {
+        while (count - at >= NODE_HEADER_SIZE) {
+            uint16_t payload = read_u16(bytes + at);
+            size_t length = NODE_HEADER_SIZE + payload;
+            if (payload > NODE_MAX_PAYLOAD || count - at < length)
+                break;
+            sink(FrameView{ bytes + at, length });
+            at += length;
+        }
+        if (at == count)
+            return true;
+    }
+    // The rest begins a frame (or announces one too long): through the
+    // buffer, as if fed after the frames before it.
+    if (!feed(bytes + at, count - at))
+        return at > 0;
+    while (auto frame = next())
+        sink(*frame);
+    return true;
+}
+
 namespace
 {
 
@@ -118,9 +143,8 @@ void board_output(void *context, const uint8_t *bytes, uint16_t count)
 {
     auto *board = static_cast<Board *>(context);
     // The node never announces an oversized frame, so the reader cannot break.
-    board->reader.feed(bytes, count);
-    while (auto frame = board->reader.next())
-        board->bus->broadcast_from_board(*board, *frame);
+    board->reader.read(
+      bytes, count, [board](FrameView frame) { board->bus->broadcast_from_board(*board, frame); });
 }
 
 struct Listener;
@@ -320,12 +344,12 @@ struct Network::State final : Bus {
             return false;
         }
         client->heard = connections::Clock::now();
-        if (!client->reader.feed(client->input.data(), count)) {
+        if (!client->reader.read(client->input.data(), count, [this, &client](FrameView frame) {
+                broadcast_from_client(*client, frame);
+            })) {
             close(*client, "it sent a frame longer than the protocol allows");
             return true;
         }
-        while (auto frame = client->reader.next())
-            broadcast_from_client(*client, *frame);
         if (client->closed || client->full_queues > 0)
             return true; // deliver_to_boards reads it again once there is room
         if (count == client->input.size())
