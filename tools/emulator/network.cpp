@@ -108,11 +108,17 @@ namespace
 {
 
 // A frame on its way to every board: one copy, shared by their queues.
-using SharedFrame = std::shared_ptr<const Frame>;
+// Its owners are counted by hand, without a shared_ptr's atomic count and
+// control block: one thread moves the frames, and a stream of events pays
+// for that on each of them.
+struct SharedFrame {
+    Frame bytes;
+    size_t owners = 0;
+};
 
 // Frames waiting for one board from one source.
 struct SourceQueue {
-    std::deque<SharedFrame> frames;
+    std::deque<SharedFrame *> frames; // each counted in its owners
     size_t bytes = 0;
     bool full = false; // a client's queue at its share: the client is not read
 };
@@ -197,11 +203,15 @@ struct Network::State final : Bus {
     bool relay_robot_events = true;
     std::function<void(const Frame &)> observer;
     Frame observed; // a robot's frame for the observer, when no board takes a copy
-    std::vector<SharedFrame> spare_frames; // delivered, for make_frame to reuse
-    int passes_without_events = 0;         // service() calls since the last look
+    std::vector<std::unique_ptr<SharedFrame>> spare_frames; // owned by none, for make_frame
+    int passes_without_events = 0;                          // service() calls since the last look
 
     ~State()
     {
+        for (auto &board : boards)
+            for (auto &[source, queue] : board->waiting)
+                for (SharedFrame *frame : queue.frames)
+                    release(frame);
         for (auto &client : clients)
             client->socket.close();
         for (auto &listener : listeners)
@@ -442,28 +452,34 @@ struct Network::State final : Bus {
         return nullptr;
     }
 
-    // A frame holding `frame`'s bytes, from the spares when one is left.
-    SharedFrame make_frame(FrameView frame)
+    // A frame holding `frame`'s bytes, from the spares when one is left,
+    // owned by the caller until it calls release.
+    SharedFrame *make_frame(FrameView frame)
     {
-        if (spare_frames.empty())
-            return std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
-        std::shared_ptr<const Frame> reused = std::move(spare_frames.back());
-        spare_frames.pop_back();
-        // Made as a mutable Frame by make_shared above: writable again now
-        // that nothing else holds it.
-        std::const_pointer_cast<Frame>(reused)->assign(frame.bytes, frame.bytes + frame.size);
-        return reused;
+        std::unique_ptr<SharedFrame> made;
+        if (spare_frames.empty()) {
+            made = std::make_unique<SharedFrame>();
+        } else {
+            made = std::move(spare_frames.back());
+            spare_frames.pop_back();
+        }
+        made->bytes.assign(frame.bytes, frame.bytes + frame.size);
+        made->owners = 1;
+        return made.release();
     }
 
-    // Keeps a delivered frame for reuse if its last owner is `frame`.
-    void recycle(SharedFrame &frame)
+    // Drops one owner of `frame`; without owners it is kept for reuse, or
+    // freed when enough are kept.
+    void release(SharedFrame *frame)
     {
-        if (frame.use_count() == 1 && spare_frames.size() < spare_frames_kept)
-            spare_frames.push_back(std::move(frame));
-        frame.reset();
+        if (--frame->owners > 0)
+            return;
+        std::unique_ptr<SharedFrame> unowned(frame);
+        if (spare_frames.size() < spare_frames_kept)
+            spare_frames.push_back(std::move(unowned));
     }
 
-    void enqueue(Board &board, uint64_t source, const SharedFrame &frame)
+    void enqueue(Board &board, uint64_t source, SharedFrame *frame)
     {
         SourceQueue &queue = board.waiting[source];
         if (source == robots_source && queue.frames.size() >= ROBOT_FRAMES_PER_ROBOT) {
@@ -471,7 +487,8 @@ struct Network::State final : Bus {
             return;
         }
         queue.frames.push_back(frame);
-        queue.bytes += frame->size();
+        frame->owners++;
+        queue.bytes += frame->bytes.size();
         board.waiting_frames++;
         if (source != robots_source && !queue.full &&
             (queue.frames.size() >= CLIENT_FRAMES_PER_ROBOT ||
@@ -506,11 +523,12 @@ struct Network::State final : Bus {
     {
         const bool user_event = read_u16(frame.bytes + type_offset) < NODE_FIRST_SYSTEM_TYPE;
         if ((!user_event || relay_robot_events) && boards.size() > 1) {
-            SharedFrame shared = make_frame(frame);
-            count(*shared);
+            SharedFrame *shared = make_frame(frame);
+            count(shared->bytes);
             for (auto &board : boards)
                 if (board.get() != &from)
                     enqueue(*board, robots_source, shared);
+            release(shared);
         } else if (observer) {
             // No other board keeps it: the observer sees a reused buffer.
             observed.assign(frame.bytes, frame.bytes + frame.size);
@@ -523,15 +541,17 @@ struct Network::State final : Bus {
 
     void broadcast_from_client(const Client &from, FrameView frame)
     {
-        SharedFrame shared = make_frame(frame);
-        count(*shared);
+        SharedFrame *shared = make_frame(frame);
+        count(shared->bytes);
         if (from.robot != nullptr) {
             // A client linked directly to one robot talks to it alone.
             enqueue(*from.robot, from.number, shared);
+            release(shared);
             return;
         }
         for (auto &board : boards)
             enqueue(*board, from.number, shared);
+        release(shared);
         send_to_clients(nullptr, &from, frame);
     }
 
@@ -558,12 +578,13 @@ struct Network::State final : Bus {
             while (board->waiting_frames > 0) {
                 auto source = next_source(*board);
                 SourceQueue &queue = source->second;
-                const Frame &frame = *queue.frames.front();
-                if (!host_board_link_deliver(board->board, frame.data(), uint16_t(frame.size())))
+                SharedFrame *frame = queue.frames.front();
+                if (!host_board_link_deliver(
+                      board->board, frame->bytes.data(), uint16_t(frame->bytes.size())))
                     break;
-                queue.bytes -= frame.size();
-                recycle(queue.frames.front());
+                queue.bytes -= frame->bytes.size();
                 queue.frames.pop_front();
+                release(frame);
                 board->waiting_frames--;
                 board->last_served = source->first;
                 if (source->first == robots_source)
