@@ -142,6 +142,10 @@ struct Board {
     std::map<uint64_t, SourceQueue> waiting;
     size_t waiting_frames = 0; // in every queue
     uint64_t last_served = robots_source;
+    // The queue enqueue found last, looked for again only for another
+    // source: a stream comes from one (queues in a map stay where they are).
+    uint64_t last_enqueued = robots_source;
+    SourceQueue *last_queue = nullptr;
 };
 
 // The board's link output, cut into frames for the bus.
@@ -203,8 +207,8 @@ struct Network::State final : Bus {
     bool relay_robot_events = true;
     std::function<void(const Frame &)> observer;
     Frame observed; // a robot's frame for the observer, when no board takes a copy
-    std::vector<std::unique_ptr<SharedFrame>> spare_frames; // owned by none, for make_frame
-    int passes_without_events = 0;                          // service() calls since the last look
+    std::vector<SharedFrame *> spare_frames; // owned by none, for make_frame; freed with the state
+    int passes_without_events = 0;           // service() calls since the last look
 
     ~State()
     {
@@ -212,6 +216,8 @@ struct Network::State final : Bus {
             for (auto &[source, queue] : board->waiting)
                 for (SharedFrame *frame : queue.frames)
                     release(frame);
+        for (SharedFrame *frame : spare_frames)
+            delete frame;
         for (auto &client : clients)
             client->socket.close();
         for (auto &listener : listeners)
@@ -456,16 +462,16 @@ struct Network::State final : Bus {
     // owned by the caller until it calls release.
     SharedFrame *make_frame(FrameView frame)
     {
-        std::unique_ptr<SharedFrame> made;
+        SharedFrame *made;
         if (spare_frames.empty()) {
-            made = std::make_unique<SharedFrame>();
+            made = new SharedFrame;
         } else {
-            made = std::move(spare_frames.back());
+            made = spare_frames.back();
             spare_frames.pop_back();
         }
         made->bytes.assign(frame.bytes, frame.bytes + frame.size);
         made->owners = 1;
-        return made.release();
+        return made;
     }
 
     // Drops one owner of `frame`; without owners it is kept for reuse, or
@@ -474,14 +480,19 @@ struct Network::State final : Bus {
     {
         if (--frame->owners > 0)
             return;
-        std::unique_ptr<SharedFrame> unowned(frame);
         if (spare_frames.size() < spare_frames_kept)
-            spare_frames.push_back(std::move(unowned));
+            spare_frames.push_back(frame);
+        else
+            delete frame;
     }
 
     void enqueue(Board &board, uint64_t source, SharedFrame *frame)
     {
-        SourceQueue &queue = board.waiting[source];
+        if (board.last_queue == nullptr || board.last_enqueued != source) {
+            board.last_queue = &board.waiting[source];
+            board.last_enqueued = source;
+        }
+        SourceQueue &queue = *board.last_queue;
         if (source == robots_source && queue.frames.size() >= ROBOT_FRAMES_PER_ROBOT) {
             frames_dropped++;
             return;
@@ -589,18 +600,21 @@ struct Network::State final : Bus {
                 board->last_served = source->first;
                 if (source->first == robots_source)
                     continue;
-                Client *client = client_numbered(source->first);
-                bool now_room = queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
-                                queue.bytes < CLIENT_BYTES_PER_ROBOT;
-                if (queue.full && now_room) {
+                // The client is looked for only when its queue stops being
+                // full or empties, not at every frame.
+                if (queue.full && queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
+                    queue.bytes < CLIENT_BYTES_PER_ROBOT) {
                     queue.full = false;
-                    if (client) {
+                    if (Client *client = client_numbered(source->first)) {
                         client->full_queues--;
                         start_read(client->shared_from_this());
                     }
                 }
-                if (!client && queue.frames.empty())
+                if (queue.frames.empty() && !client_numbered(source->first)) {
+                    if (board->last_queue == &queue)
+                        board->last_queue = nullptr;
                     board->waiting.erase(source);
+                }
             }
         }
     }
