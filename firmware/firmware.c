@@ -17,25 +17,21 @@ typedef char
 typedef char variables_hold_the_named_ones[ROBOT_NAMED_WORDS > VM_NAMED_ARGS ? 1 : -1];
 typedef char local_events_fit_a_word[ROBOT_LOCAL_EVENT_COUNT <= 16 ? 1 : -1];
 
-// Bytes taken from the link at a time, on the stack (little on the dsPIC):
-// a frame's header, or the payload of a short one, in one call.
-#define LINK_RECEIVE_CHUNK 8u
-
-// Moves received bytes from the link into the node's frame, never more than
-// the frame lacks so that none has to wait anywhere between the two, until
-// the link is empty or a whole frame waits for the node. Returns whether the
-// node stopped taking them (the link may hold more for after node_poll).
+// Moves received bytes from the link straight into the node's frame, never
+// more than the frame lacks so that none has to wait anywhere between the
+// two, until the link is empty or a whole frame waits for the node. Returns
+// whether the node stopped taking them (the link may hold more for after
+// node_poll).
 static bool receive_from_link(firmware_state *firmware, uint32_t now)
 {
-    uint8_t bytes[LINK_RECEIVE_CHUNK];
     uint16_t wanted;
 
     while ((wanted = node_receive_wanted(&firmware->node, now)) > 0) {
-        uint16_t count = hal_link_receive(
-          firmware->board, bytes, wanted < LINK_RECEIVE_CHUNK ? wanted : LINK_RECEIVE_CHUNK);
+        uint16_t count =
+          hal_link_receive(firmware->board, node_receive_place(&firmware->node), wanted);
         if (count == 0)
             return false;
-        node_receive(&firmware->node, bytes, count, now);
+        node_receive_placed(&firmware->node, count, now);
     }
     return true;
 }

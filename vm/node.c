@@ -111,9 +111,40 @@ uint16_t node_receive_wanted(node_state *node, uint32_t now_ms)
     return (uint16_t)(NODE_HEADER_SIZE + frame_word(node, FRAME_LENGTH) - node->received);
 }
 
+uint8_t *node_receive_place(node_state *node)
+{
+    return (uint8_t *)node->frame + node->received;
+}
+
+// `count` bytes, no more than node_receive_wanted asked for, are now in
+// place at the frame's end: a header that announces too long a payload
+// starts a resynchronisation, a frame complete waits for node_poll.
+static void frame_grew(node_state *node, uint16_t count)
+{
+    node->received = (uint16_t)(node->received + count);
+    if (node->received < NODE_HEADER_SIZE)
+        return;
+    if (frame_word(node, FRAME_LENGTH) > NODE_MAX_PAYLOAD) {
+        count_error(&node->errors.oversize);
+        node->received = 0;
+        node->resynchronising = true;
+    } else if (node->received == NODE_HEADER_SIZE + frame_word(node, FRAME_LENGTH)) {
+        node->frame_ready = true;
+    }
+}
+
+void node_receive_placed(node_state *node, uint16_t count, uint32_t now_ms)
+{
+    if (count == 0)
+        return;
+    node->last_byte_ms = now_ms;
+    // While resynchronising, the byte in place is dropped.
+    if (!node->resynchronising)
+        frame_grew(node, count);
+}
+
 uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, uint32_t now_ms)
 {
-    uint8_t *frame = (uint8_t *)node->frame;
     uint16_t taken = 0;
 
     // A part at a time: the header, then the payload its length announces
@@ -131,17 +162,14 @@ uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, ui
         if (part > count - taken)
             part = (uint16_t)(count - taken);
         taken = (uint16_t)(taken + part);
-        while (part-- > 0)
-            frame[node->received++] = *bytes++;
-        if (node->received < NODE_HEADER_SIZE)
-            continue;
-        if (frame_word(node, FRAME_LENGTH) > NODE_MAX_PAYLOAD) {
-            count_error(&node->errors.oversize);
-            node->received = 0;
-            node->resynchronising = true;
-        } else if (node->received == NODE_HEADER_SIZE + frame_word(node, FRAME_LENGTH)) {
-            node->frame_ready = true;
+        {
+            uint8_t *place = node_receive_place(node);
+            uint16_t i;
+
+            for (i = 0; i < part; i++)
+                place[i] = *bytes++;
         }
+        frame_grew(node, part);
     }
     return taken;
 }

@@ -13,6 +13,20 @@
 #define UTF8_CONTINUATION_MASK  0xC0
 #define UTF8_CONTINUATION_VALUE 0x80
 
+// The header goes into the transmit buffer at once, before any piece leaves.
+typedef char header_fits_a_piece[NODE_TRANSMIT_CHUNK > NODE_HEADER_SIZE ? 1 : -1];
+
+// Header word positions in the transmit buffer, in bytes.
+#define HEADER_LENGTH 0
+#define HEADER_SOURCE 2
+#define HEADER_TYPE   4
+
+static void store_u16(uint8_t *bytes, uint16_t value)
+{
+    bytes[0] = (uint8_t)(value & BYTE_MASK);
+    bytes[1] = (uint8_t)(value >> BYTE_BITS);
+}
+
 static void flush(node_state *node, bool frame_complete)
 {
     node->transport.send(
@@ -35,11 +49,13 @@ void node_frame_begin(node_state *node, uint16_t type, uint16_t payload_length)
 {
     if (payload_length > NODE_MAX_PAYLOAD)
         payload_length = NODE_MAX_PAYLOAD;
-    node->transmit_fill = 0;
-    node->transmit_left = (uint16_t)(NODE_HEADER_SIZE + payload_length);
-    node_frame_put_u16(node, payload_length);
-    node_frame_put_u16(node, node->vm.node_id);
-    node_frame_put_u16(node, type);
+    // Every message starts a frame: its header is stored directly, not a
+    // byte at a time through the checks of node_frame_put_byte.
+    store_u16(node->transmit + HEADER_LENGTH, payload_length);
+    store_u16(node->transmit + HEADER_SOURCE, node->vm.node_id);
+    store_u16(node->transmit + HEADER_TYPE, type);
+    node->transmit_fill = NODE_HEADER_SIZE;
+    node->transmit_left = payload_length;
 }
 
 void node_frame_put_u16(node_state *node, uint16_t value)

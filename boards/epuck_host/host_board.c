@@ -188,7 +188,9 @@ bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t co
     if (first > count)
         first = count;
     memcpy(board->receive + end, bytes, first);
-    memcpy(board->receive, bytes + first, (size_t)(count - first));
+    // Most pieces end before the ring does: spare the second call then.
+    if (count > first)
+        memcpy(board->receive, bytes + first, (size_t)(count - first));
     board->receive_count = (uint16_t)(board->receive_count + count);
     return true;
 }
@@ -204,7 +206,8 @@ uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
     if (first > count)
         first = count;
     memcpy(bytes, board->receive + board->receive_start, first);
-    memcpy(bytes + first, board->receive, (size_t)(count - first));
+    if (count > first)
+        memcpy(bytes + first, board->receive, (size_t)(count - first));
     board->receive_start = (uint16_t)((board->receive_start + count) % HAL_LINK_RECEIVE_CAPACITY);
     board->receive_count = (uint16_t)(board->receive_count - count);
     return count;

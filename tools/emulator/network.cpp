@@ -79,15 +79,46 @@ std::optional<FrameView> FrameReader::next()
     return FrameView{ start, length };
 }
 
+template<class Sink>
+bool FrameReader::read(const uint8_t *bytes, size_t count, Sink &&sink)
+{
+    size_t at = 0;
+    if (!broken_ && consumed_ == pending_.size()) {
+        while (count - at >= NODE_HEADER_SIZE) {
+            uint16_t payload = read_u16(bytes + at);
+            size_t length = NODE_HEADER_SIZE + payload;
+            if (payload > NODE_MAX_PAYLOAD || count - at < length)
+                break;
+            sink(FrameView{ bytes + at, length });
+            at += length;
+        }
+        if (at == count)
+            return true;
+    }
+    // The rest begins a frame (or announces one too long): through the
+    // buffer, as if fed after the frames before it.
+    if (!feed(bytes + at, count - at))
+        return at > 0;
+    while (auto frame = next())
+        sink(*frame);
+    return true;
+}
+
 namespace
 {
 
 // A frame on its way to every board: one copy, shared by their queues.
-using SharedFrame = std::shared_ptr<const Frame>;
+// Its owners are counted by hand, without a shared_ptr's atomic count and
+// control block: one thread moves the frames, and a stream of events pays
+// for that on each of them.
+struct SharedFrame {
+    Frame bytes;
+    size_t owners = 0;
+};
 
 // Frames waiting for one board from one source.
 struct SourceQueue {
-    std::deque<SharedFrame> frames;
+    std::deque<SharedFrame *> frames; // each counted in its owners
     size_t bytes = 0;
     bool full = false; // a client's queue at its share: the client is not read
 };
@@ -111,6 +142,10 @@ struct Board {
     std::map<uint64_t, SourceQueue> waiting;
     size_t waiting_frames = 0; // in every queue
     uint64_t last_served = robots_source;
+    // The queue enqueue found last, looked for again only for another
+    // source: a stream comes from one (queues in a map stay where they are).
+    uint64_t last_enqueued = robots_source;
+    SourceQueue *last_queue = nullptr;
 };
 
 // The board's link output, cut into frames for the bus.
@@ -118,9 +153,8 @@ void board_output(void *context, const uint8_t *bytes, uint16_t count)
 {
     auto *board = static_cast<Board *>(context);
     // The node never announces an oversized frame, so the reader cannot break.
-    board->reader.feed(bytes, count);
-    while (auto frame = board->reader.next())
-        board->bus->broadcast_from_board(*board, *frame);
+    board->reader.read(
+      bytes, count, [board](FrameView frame) { board->bus->broadcast_from_board(*board, frame); });
 }
 
 struct Listener;
@@ -173,11 +207,17 @@ struct Network::State final : Bus {
     bool relay_robot_events = true;
     std::function<void(const Frame &)> observer;
     Frame observed; // a robot's frame for the observer, when no board takes a copy
-    std::vector<SharedFrame> spare_frames; // delivered, for make_frame to reuse
-    int passes_without_events = 0;         // service() calls since the last look
+    std::vector<SharedFrame *> spare_frames; // owned by none, for make_frame; freed with the state
+    int passes_without_events = 0;           // service() calls since the last look
 
     ~State()
     {
+        for (auto &board : boards)
+            for (auto &[source, queue] : board->waiting)
+                for (SharedFrame *frame : queue.frames)
+                    release(frame);
+        for (SharedFrame *frame : spare_frames)
+            delete frame;
         for (auto &client : clients)
             client->socket.close();
         for (auto &listener : listeners)
@@ -320,12 +360,12 @@ struct Network::State final : Bus {
             return false;
         }
         client->heard = connections::Clock::now();
-        if (!client->reader.feed(client->input.data(), count)) {
+        if (!client->reader.read(client->input.data(), count, [this, &client](FrameView frame) {
+                broadcast_from_client(*client, frame);
+            })) {
             close(*client, "it sent a frame longer than the protocol allows");
             return true;
         }
-        while (auto frame = client->reader.next())
-            broadcast_from_client(*client, *frame);
         if (client->closed || client->full_queues > 0)
             return true; // deliver_to_boards reads it again once there is room
         if (count == client->input.size())
@@ -418,36 +458,48 @@ struct Network::State final : Bus {
         return nullptr;
     }
 
-    // A frame holding `frame`'s bytes, from the spares when one is left.
-    SharedFrame make_frame(FrameView frame)
+    // A frame holding `frame`'s bytes, from the spares when one is left,
+    // owned by the caller until it calls release.
+    SharedFrame *make_frame(FrameView frame)
     {
-        if (spare_frames.empty())
-            return std::make_shared<const Frame>(frame.bytes, frame.bytes + frame.size);
-        std::shared_ptr<const Frame> reused = std::move(spare_frames.back());
-        spare_frames.pop_back();
-        // Made as a mutable Frame by make_shared above: writable again now
-        // that nothing else holds it.
-        std::const_pointer_cast<Frame>(reused)->assign(frame.bytes, frame.bytes + frame.size);
-        return reused;
+        SharedFrame *made;
+        if (spare_frames.empty()) {
+            made = new SharedFrame;
+        } else {
+            made = spare_frames.back();
+            spare_frames.pop_back();
+        }
+        made->bytes.assign(frame.bytes, frame.bytes + frame.size);
+        made->owners = 1;
+        return made;
     }
 
-    // Keeps a delivered frame for reuse if its last owner is `frame`.
-    void recycle(SharedFrame &frame)
+    // Drops one owner of `frame`; without owners it is kept for reuse, or
+    // freed when enough are kept.
+    void release(SharedFrame *frame)
     {
-        if (frame.use_count() == 1 && spare_frames.size() < spare_frames_kept)
-            spare_frames.push_back(std::move(frame));
-        frame.reset();
+        if (--frame->owners > 0)
+            return;
+        if (spare_frames.size() < spare_frames_kept)
+            spare_frames.push_back(frame);
+        else
+            delete frame;
     }
 
-    void enqueue(Board &board, uint64_t source, const SharedFrame &frame)
+    void enqueue(Board &board, uint64_t source, SharedFrame *frame)
     {
-        SourceQueue &queue = board.waiting[source];
+        if (board.last_queue == nullptr || board.last_enqueued != source) {
+            board.last_queue = &board.waiting[source];
+            board.last_enqueued = source;
+        }
+        SourceQueue &queue = *board.last_queue;
         if (source == robots_source && queue.frames.size() >= ROBOT_FRAMES_PER_ROBOT) {
             frames_dropped++;
             return;
         }
         queue.frames.push_back(frame);
-        queue.bytes += frame->size();
+        frame->owners++;
+        queue.bytes += frame->bytes.size();
         board.waiting_frames++;
         if (source != robots_source && !queue.full &&
             (queue.frames.size() >= CLIENT_FRAMES_PER_ROBOT ||
@@ -482,11 +534,12 @@ struct Network::State final : Bus {
     {
         const bool user_event = read_u16(frame.bytes + type_offset) < NODE_FIRST_SYSTEM_TYPE;
         if ((!user_event || relay_robot_events) && boards.size() > 1) {
-            SharedFrame shared = make_frame(frame);
-            count(*shared);
+            SharedFrame *shared = make_frame(frame);
+            count(shared->bytes);
             for (auto &board : boards)
                 if (board.get() != &from)
                     enqueue(*board, robots_source, shared);
+            release(shared);
         } else if (observer) {
             // No other board keeps it: the observer sees a reused buffer.
             observed.assign(frame.bytes, frame.bytes + frame.size);
@@ -499,15 +552,17 @@ struct Network::State final : Bus {
 
     void broadcast_from_client(const Client &from, FrameView frame)
     {
-        SharedFrame shared = make_frame(frame);
-        count(*shared);
+        SharedFrame *shared = make_frame(frame);
+        count(shared->bytes);
         if (from.robot != nullptr) {
             // A client linked directly to one robot talks to it alone.
             enqueue(*from.robot, from.number, shared);
+            release(shared);
             return;
         }
         for (auto &board : boards)
             enqueue(*board, from.number, shared);
+        release(shared);
         send_to_clients(nullptr, &from, frame);
     }
 
@@ -534,28 +589,32 @@ struct Network::State final : Bus {
             while (board->waiting_frames > 0) {
                 auto source = next_source(*board);
                 SourceQueue &queue = source->second;
-                const Frame &frame = *queue.frames.front();
-                if (!host_board_link_deliver(board->board, frame.data(), uint16_t(frame.size())))
+                SharedFrame *frame = queue.frames.front();
+                if (!host_board_link_deliver(
+                      board->board, frame->bytes.data(), uint16_t(frame->bytes.size())))
                     break;
-                queue.bytes -= frame.size();
-                recycle(queue.frames.front());
+                queue.bytes -= frame->bytes.size();
                 queue.frames.pop_front();
+                release(frame);
                 board->waiting_frames--;
                 board->last_served = source->first;
                 if (source->first == robots_source)
                     continue;
-                Client *client = client_numbered(source->first);
-                bool now_room = queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
-                                queue.bytes < CLIENT_BYTES_PER_ROBOT;
-                if (queue.full && now_room) {
+                // The client is looked for only when its queue stops being
+                // full or empties, not at every frame.
+                if (queue.full && queue.frames.size() < CLIENT_FRAMES_PER_ROBOT &&
+                    queue.bytes < CLIENT_BYTES_PER_ROBOT) {
                     queue.full = false;
-                    if (client) {
+                    if (Client *client = client_numbered(source->first)) {
                         client->full_queues--;
                         start_read(client->shared_from_this());
                     }
                 }
-                if (!client && queue.frames.empty())
+                if (queue.frames.empty() && !client_numbered(source->first)) {
+                    if (board->last_queue == &queue)
+                        board->last_queue = nullptr;
                     board->waiting.erase(source);
+                }
             }
         }
     }

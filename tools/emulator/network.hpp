@@ -70,6 +70,11 @@ class FrameReader
     bool feed(const uint8_t *bytes, size_t count);
     // The next complete frame, if any, in the reader's buffer until the next feed.
     std::optional<FrameView> next();
+    // feed, then `sink` with each frame next gives; whole frames are passed
+    // where they lie in `bytes` when no earlier part waits, which is most
+    // of the time. Defined where it is used (network.cpp).
+    template<class Sink>
+    bool read(const uint8_t *bytes, size_t count, Sink &&sink);
 
   private:
     std::vector<uint8_t> pending_;

@@ -27,16 +27,28 @@ void robot_start(robot_devices *robot, hal_board *board)
     epuck_rc5_init(&robot->rc5, board);
 }
 
+// The main loop actuates on every pass, many times between two changes of
+// the variables: what a device already holds costs a comparison, no call.
+static void drive_motor(epuck_motor *motor, int16_t *speed)
+{
+    if (*speed == motor->speed)
+        return;
+    epuck_motor_set_speed(motor, *speed);
+    *speed = epuck_motor_speed(motor);
+}
+
 void robot_actuate(robot_devices *robot, robot_variables *named)
 {
     uint16_t led;
 
-    epuck_motor_set_speed(&robot->left_motor, named->left_speed[0]);
-    epuck_motor_set_speed(&robot->right_motor, named->right_speed[0]);
-    named->left_speed[0] = epuck_motor_speed(&robot->left_motor);
-    named->right_speed[0] = epuck_motor_speed(&robot->right_motor);
-    for (led = 0; led < EPUCK_RING_LED_COUNT; led++)
-        epuck_leds_set(&robot->leds, led, named->leds[led] != 0);
+    drive_motor(&robot->left_motor, named->left_speed);
+    drive_motor(&robot->right_motor, named->right_speed);
+    for (led = 0; led < EPUCK_RING_LED_COUNT; led++) {
+        bool on = named->leds[led] != 0;
+
+        if (robot->leds.on[led] != on)
+            epuck_leds_set(&robot->leds, led, on);
+    }
 }
 
 uint16_t robot_sense(robot_devices *robot, robot_variables *named)
