@@ -66,6 +66,7 @@ static bool any_input_watched(const hal_board *board)
 // again.
 static int16_t next_timer_or_input(const hal_board *board,
                                    uint64_t until,
+                                   bool inputs_watched,
                                    uint64_t *due,
                                    uint64_t *input_change,
                                    bool *input_known)
@@ -80,7 +81,7 @@ static int16_t next_timer_or_input(const hal_board *board,
             *due = timer->next_due;
         }
     }
-    if (board->world->next_input_change && any_input_watched(board)) {
+    if (inputs_watched) {
         if (!*input_known || *input_change <= board->cycles) {
             *input_change = board->world->next_input_change(board->world->context, board->cycles);
             *input_known = true;
@@ -99,13 +100,25 @@ void host_board_advance(hal_board *board, uint64_t cycles)
     uint64_t until = board->cycles + cycles;
     uint64_t input_change = 0;
     bool input_known = false;
+    // Whether an input is watched, worked out again only when a callback
+    // starts or stops a peripheral: the scheduler asks at every event.
+    uint32_t watches_seen = board->configuration_changes - 1u;
+    bool inputs_watched = false;
     uint16_t pin;
 
     for (;;) {
         uint64_t due = 0;
+        uint64_t scans_until;
         uint32_t changes = board->configuration_changes;
-        int16_t event = next_timer_or_input(board, until, &due, &input_change, &input_known);
-        uint64_t scans_until = event == EVENT_NONE ? until : due;
+        int16_t event;
+
+        if (changes != watches_seen) {
+            inputs_watched = board->world->next_input_change && any_input_watched(board);
+            watches_seen = changes;
+        }
+        event =
+          next_timer_or_input(board, until, inputs_watched, &due, &input_change, &input_known);
+        scans_until = event == EVENT_NONE ? until : due;
 
         // The ADC scans up to the next other event, the one at the same
         // cycle included (a scan goes first), in a row: at 16,384 a second
