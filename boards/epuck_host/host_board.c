@@ -109,6 +109,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
     for (;;) {
         uint64_t due = 0;
         uint64_t scans_until;
+        uint64_t run_until;
         uint32_t changes = board->configuration_changes;
         int16_t event;
 
@@ -119,6 +120,13 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         event =
           next_timer_or_input(board, until, inputs_watched, &due, &input_change, &input_known);
         scans_until = event == EVENT_NONE ? until : due;
+        // A run of unchanging scans goes to the firmware before the timers
+        // due during it (epuck_adc_scan_run_callback): a motor's steps
+        // would otherwise cut the microphones' runs a thousand times a
+        // second. Input changes still end it.
+        run_until = scans_until;
+        if (event != EVENT_NONE && event != EVENT_INPUT_CHANGE)
+            run_until = inputs_watched && input_change < until ? input_change : until;
 
         // The ADC scans up to the next other event, the one at the same
         // cycle included (a scan goes first), in a row: at 16,384 a second
@@ -126,7 +134,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         // peripheral ends the row, so that the next event is chosen again.
         while (board->adc_scan_mask != 0 && board->adc_next_due <= scans_until) {
             board->cycles = board->adc_next_due;
-            host_board_run_adc_scans(board, scans_until);
+            host_board_run_adc_scans(board, run_until);
             if (board->configuration_changes != changes)
                 break;
         }
@@ -138,6 +146,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         // asked again for a change after that cycle.
         if (event == EVENT_INPUT_CHANGE && board->cycles >= due)
             continue;
+        // The time goes back to the timer's when a run of scans went past it.
         board->cycles = due;
         // Firmware code other than the scan's ran: ask the world again.
         input_known = false;

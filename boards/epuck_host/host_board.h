@@ -99,7 +99,8 @@ void host_board_set_time(hal_board *board, uint32_t milliseconds);
 // and ADC-scan callback that falls due at its time, and signalling the
 // edges of watched input pins at the cycles the world says they may change,
 // earliest first (at equal times: the ADC scan, the timers in epuck_timer
-// order, then the inputs).
+// order, then the inputs); but a run of scans the world holds steady goes
+// to the firmware before the timers due during it (epuck_board.h).
 void host_board_advance(hal_board *board, uint64_t cycles);
 
 // Processor cycles since start (HOST_CYCLES_PER_SECOND a second).
