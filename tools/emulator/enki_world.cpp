@@ -251,6 +251,11 @@ void phase_written(RobotState &state, Motor motor, epuck_pin first)
 void world_pin_written(void *context, epuck_pin pin, bool high, uint64_t)
 {
     RobotState &state = state_of(context);
+    // A line driven as it was changes nothing (the lines' pattern was seen
+    // when it was last written): a motor's step drives its two steady
+    // lines again, a thousand times a second.
+    if (state.output[pin] == high)
+        return;
     state.output[pin] = high;
     if (pin >= EPUCK_PIN_MOTOR_LEFT_A && pin <= EPUCK_PIN_MOTOR_LEFT_D)
         phase_written(state, left_motor, EPUCK_PIN_MOTOR_LEFT_A);
