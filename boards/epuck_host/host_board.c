@@ -19,6 +19,7 @@ void host_board_init(hal_board *board,
     board->link_context = link_context;
     board->world = host_world_flat();
     board->power_cut_at = HOST_NO_POWER_CUT;
+    board->inputs_watched_at = board->configuration_changes - 1u;
     for (i = 0; i < HOST_EEPROM_WORDS; i++)
         board->eeprom[i] = HOST_EEPROM_ERASED;
     for (i = 0; i < HOST_FLASH_WORDS; i++)
@@ -30,6 +31,8 @@ void host_board_set_world(hal_board *board, const host_world *world)
     uint16_t pin;
 
     board->world = world;
+    // Whether it foresees input changes is the new world's to say.
+    board->inputs_watched_at = board->configuration_changes - 1u;
     for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
         board->last_input[pin] = world->pin_read(world->context, (epuck_pin)pin, board->cycles);
 }
@@ -100,10 +103,6 @@ void host_board_advance(hal_board *board, uint64_t cycles)
     uint64_t until = board->cycles + cycles;
     uint64_t input_change = 0;
     bool input_known = false;
-    // Whether an input is watched, worked out again only when a callback
-    // starts or stops a peripheral: the scheduler asks at every event.
-    uint32_t watches_seen = board->configuration_changes - 1u;
-    bool inputs_watched = false;
     uint16_t pin;
 
     for (;;) {
@@ -113,12 +112,14 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         uint32_t changes = board->configuration_changes;
         int16_t event;
 
-        if (changes != watches_seen) {
-            inputs_watched = board->world->next_input_change && any_input_watched(board);
-            watches_seen = changes;
+        // Whether an input is watched, worked out again only when a
+        // peripheral started or stopped: the scheduler asks at every event.
+        if (changes != board->inputs_watched_at) {
+            board->inputs_watched = board->world->next_input_change && any_input_watched(board);
+            board->inputs_watched_at = changes;
         }
-        event =
-          next_timer_or_input(board, until, inputs_watched, &due, &input_change, &input_known);
+        event = next_timer_or_input(
+          board, until, board->inputs_watched, &due, &input_change, &input_known);
         scans_until = event == EVENT_NONE ? until : due;
         // A run of unchanging scans goes to the firmware before the timers
         // due during it (epuck_adc_scan_run_callback): a motor's steps
@@ -126,7 +127,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         // second. Input changes still end it.
         run_until = scans_until;
         if (event != EVENT_NONE && event != EVENT_INPUT_CHANGE)
-            run_until = inputs_watched && input_change < until ? input_change : until;
+            run_until = board->inputs_watched && input_change < until ? input_change : until;
 
         // The ADC scans up to the next other event, the one at the same
         // cycle included (a scan goes first), in a row: at 16,384 a second

@@ -71,6 +71,10 @@ struct hal_board {
     // Counts the starts and stops of timers and pin watches, so that the
     // scheduler knows when a callback changed what falls due next.
     uint32_t configuration_changes;
+    // Whether the world is asked for input changes, as worked out at
+    // configuration_changes == inputs_watched_at.
+    uint32_t inputs_watched_at;
+    bool inputs_watched;
 
     uint16_t eeprom[HOST_EEPROM_WORDS];
     uint32_t flash[HOST_FLASH_WORDS];
