@@ -177,6 +177,11 @@ void epuck_board_pin_write(hal_board *board, epuck_pin pin, bool high);
 // The level of `pin`: what an input sees, or what an output drives.
 bool epuck_board_pin_read(hal_board *board, epuck_pin pin);
 
+// The levels of the `count` pins (1 to 16) from `first` on, pin first + i in
+// bit i: what as many calls of epuck_board_pin_read give, in one call (the
+// selector's four bits, read at every pass of the main loop).
+uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count);
+
 // Calls `callback(context)` on each falling edge of input `pin` until
 // unwatched; returns false when the pin cannot signal edges (only
 // EPUCK_PIN_REMOTE can: INT0).
