@@ -76,6 +76,17 @@ bool epuck_board_pin_read(hal_board *board, epuck_pin pin)
     return (dspic30_read((uint16_t)(location->tris + offset)) >> location->bit) & 1u;
 }
 
+uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count)
+{
+    uint16_t levels = 0;
+    uint8_t i;
+
+    for (i = 0; i < count; i++)
+        if (epuck_board_pin_read(board, (epuck_pin)(first + i)))
+            levels = (uint16_t)(levels | (1u << i));
+    return levels;
+}
+
 bool epuck_board_pin_watch_falling_edge(hal_board *board,
                                         epuck_pin pin,
                                         epuck_callback callback,

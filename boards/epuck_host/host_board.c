@@ -19,6 +19,7 @@ void host_board_init(hal_board *board,
     board->link_context = link_context;
     board->world = host_world_flat();
     board->power_cut_at = HOST_NO_POWER_CUT;
+    board->inputs_watched_at = board->configuration_changes - 1u;
     for (i = 0; i < HOST_EEPROM_WORDS; i++)
         board->eeprom[i] = HOST_EEPROM_ERASED;
     for (i = 0; i < HOST_FLASH_WORDS; i++)
@@ -30,6 +31,8 @@ void host_board_set_world(hal_board *board, const host_world *world)
     uint16_t pin;
 
     board->world = world;
+    // Whether it foresees input changes is the new world's to say.
+    board->inputs_watched_at = board->configuration_changes - 1u;
     for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
         board->last_input[pin] = world->pin_read(world->context, (epuck_pin)pin, board->cycles);
 }
@@ -66,6 +69,7 @@ static bool any_input_watched(const hal_board *board)
 // again.
 static int16_t next_timer_or_input(const hal_board *board,
                                    uint64_t until,
+                                   bool inputs_watched,
                                    uint64_t *due,
                                    uint64_t *input_change,
                                    bool *input_known)
@@ -80,7 +84,7 @@ static int16_t next_timer_or_input(const hal_board *board,
             *due = timer->next_due;
         }
     }
-    if (board->world->next_input_change && any_input_watched(board)) {
+    if (inputs_watched) {
         if (!*input_known || *input_change <= board->cycles) {
             *input_change = board->world->next_input_change(board->world->context, board->cycles);
             *input_known = true;
@@ -103,9 +107,27 @@ void host_board_advance(hal_board *board, uint64_t cycles)
 
     for (;;) {
         uint64_t due = 0;
+        uint64_t scans_until;
+        uint64_t run_until;
         uint32_t changes = board->configuration_changes;
-        int16_t event = next_timer_or_input(board, until, &due, &input_change, &input_known);
-        uint64_t scans_until = event == EVENT_NONE ? until : due;
+        int16_t event;
+
+        // Whether an input is watched, worked out again only when a
+        // peripheral started or stopped: the scheduler asks at every event.
+        if (changes != board->inputs_watched_at) {
+            board->inputs_watched = board->world->next_input_change && any_input_watched(board);
+            board->inputs_watched_at = changes;
+        }
+        event = next_timer_or_input(
+          board, until, board->inputs_watched, &due, &input_change, &input_known);
+        scans_until = event == EVENT_NONE ? until : due;
+        // A run of unchanging scans goes to the firmware before the timers
+        // due during it (epuck_adc_scan_run_callback): a motor's steps
+        // would otherwise cut the microphones' runs a thousand times a
+        // second. Input changes still end it.
+        run_until = scans_until;
+        if (event != EVENT_NONE && event != EVENT_INPUT_CHANGE)
+            run_until = board->inputs_watched && input_change < until ? input_change : until;
 
         // The ADC scans up to the next other event, the one at the same
         // cycle included (a scan goes first), in a row: at 16,384 a second
@@ -113,7 +135,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         // peripheral ends the row, so that the next event is chosen again.
         while (board->adc_scan_mask != 0 && board->adc_next_due <= scans_until) {
             board->cycles = board->adc_next_due;
-            host_board_run_adc_scans(board, scans_until);
+            host_board_run_adc_scans(board, run_until);
             if (board->configuration_changes != changes)
                 break;
         }
@@ -125,6 +147,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         // asked again for a change after that cycle.
         if (event == EVENT_INPUT_CHANGE && board->cycles >= due)
             continue;
+        // The time goes back to the timer's when a run of scans went past it.
         board->cycles = due;
         // Firmware code other than the scan's ran: ask the world again.
         input_known = false;

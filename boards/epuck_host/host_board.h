@@ -71,6 +71,10 @@ struct hal_board {
     // Counts the starts and stops of timers and pin watches, so that the
     // scheduler knows when a callback changed what falls due next.
     uint32_t configuration_changes;
+    // Whether the world is asked for input changes, as worked out at
+    // configuration_changes == inputs_watched_at.
+    uint32_t inputs_watched_at;
+    bool inputs_watched;
 
     uint16_t eeprom[HOST_EEPROM_WORDS];
     uint32_t flash[HOST_FLASH_WORDS];
@@ -99,7 +103,8 @@ void host_board_set_time(hal_board *board, uint32_t milliseconds);
 // and ADC-scan callback that falls due at its time, and signalling the
 // edges of watched input pins at the cycles the world says they may change,
 // earliest first (at equal times: the ADC scan, the timers in epuck_timer
-// order, then the inputs).
+// order, then the inputs); but a run of scans the world holds steady goes
+// to the firmware before the timers due during it (epuck_board.h).
 void host_board_advance(hal_board *board, uint64_t cycles);
 
 // Processor cycles since start (HOST_CYCLES_PER_SECOND a second).

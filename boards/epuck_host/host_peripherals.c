@@ -15,10 +15,8 @@ uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
 
 static uint8_t scan_channel_count(uint16_t mask)
 {
-    uint8_t count = 0;
-    for (; mask != 0; mask = (uint16_t)(mask & (mask - 1u)))
-        count++;
-    return count;
+    // The sequencer selects a scan's channels a few hundred times a second.
+    return (uint8_t)__builtin_popcount(mask);
 }
 
 static bool scan_mask_supported(uint16_t mask)
@@ -127,6 +125,21 @@ bool epuck_board_pin_read(hal_board *board, epuck_pin pin)
     if (pin < EPUCK_PIN_FIRST_INPUT)
         return board->outputs[pin];
     return board->world->pin_read(board->world->context, pin, board->cycles);
+}
+
+uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count)
+{
+    const host_world *world = board->world;
+    uint16_t levels = 0;
+    uint8_t i;
+
+    if (world->inputs_read && (uint16_t)first >= EPUCK_PIN_FIRST_INPUT &&
+        (uint16_t)first + count <= EPUCK_PIN_COUNT)
+        return world->inputs_read(world->context, first, count, board->cycles);
+    for (i = 0; i < count; i++)
+        if (epuck_board_pin_read(board, (epuck_pin)(first + i)))
+            levels = (uint16_t)(levels | (1u << i));
+    return levels;
 }
 
 bool epuck_board_pin_watch_falling_edge(hal_board *board,

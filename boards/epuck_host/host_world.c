@@ -90,6 +90,7 @@ static const host_world flat_world = {
     0,
     flat_adc_channels_steady,
     0,
+    0,
 };
 
 const host_world *host_world_flat(void)

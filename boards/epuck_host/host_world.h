@@ -60,6 +60,11 @@ typedef struct host_world {
                                       uint16_t pixels,
                                       uint64_t cycle,
                                       uint8_t *bytes);
+    // The levels of the `count` input pins from `first` on at `cycle`, pin
+    // first + i in bit i: what pin_read gives for each, in one call (the
+    // selector's bits, read every millisecond). NULL: the board calls
+    // pin_read for each.
+    uint16_t (*inputs_read)(void *context, epuck_pin first, uint8_t count, uint64_t cycle);
 } host_world;
 
 #define HOST_NO_INPUT_CHANGE UINT64_MAX

@@ -88,9 +88,12 @@ bool epuck_board_adc_scan_select(hal_board *board, uint16_t channel_mask);
 void epuck_board_adc_scan_stop(hal_board *board);
 
 // Receives `scans` (2 or more) scans in a row that read the same `values`,
-// with nothing else run between them, and takes the first of them, or more:
-// exactly what as many calls of the scan callback would have done. Returns
-// how many it took (1..scans); the board hands over the others afterwards.
+// with no other scan and no input edge between them, and takes the first of
+// them, or more: exactly what as many calls of the scan callback would have
+// done. Returns how many it took (1..scans); the board hands over the
+// others afterwards. The timer callbacks due during the scans taken run
+// after it, at their own times: a run callback shares nothing with them,
+// and they neither start, stop nor select the scan.
 typedef uint16_t (*epuck_adc_scan_run_callback)(void *context,
                                                 const uint16_t *values,
                                                 uint8_t count,
@@ -173,6 +176,11 @@ void epuck_board_pin_write(hal_board *board, epuck_pin pin, bool high);
 
 // The level of `pin`: what an input sees, or what an output drives.
 bool epuck_board_pin_read(hal_board *board, epuck_pin pin);
+
+// The levels of the `count` pins (1 to 16) from `first` on, pin first + i in
+// bit i: what as many calls of epuck_board_pin_read give, in one call (the
+// selector's four bits, read at every pass of the main loop).
+uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count);
 
 // Calls `callback(context)` on each falling edge of input `pin` until
 // unwatched; returns false when the pin cannot signal edges (only

@@ -237,6 +237,29 @@ TEST(ArenaSensing, CameraRowReadAtOnceIsTheRowReadByteByByte)
     }
 }
 
+// The board reads the selector's bits at once (host_world's inputs_read):
+// the levels read one by one, at every position, and for other runs of
+// inputs too.
+TEST(ArenaSensing, InputsReadAtOnceAreTheInputsReadOneByOne)
+{
+    Arena arena = default_arena(2);
+    EnkiWorld world(arena, 1);
+    const host_world &table = *world.world_of(1);
+    for (uint16_t position = 0; position < 16; position++) {
+        world.set_selector(1, position);
+        for (uint16_t first = EPUCK_PIN_FIRST_INPUT; first < EPUCK_PIN_COUNT; first++)
+            for (uint16_t count = 1; first + count <= EPUCK_PIN_COUNT; count++) {
+                uint16_t one_by_one = 0;
+                for (uint16_t i = 0; i < count; i++)
+                    if (table.pin_read(table.context, epuck_pin(first + i), 0))
+                        one_by_one |= uint16_t(1u << i);
+                ASSERT_EQ(table.inputs_read(table.context, epuck_pin(first), uint8_t(count), 0),
+                          one_by_one)
+                  << "position " << position << " pins " << first << " to " << first + count;
+            }
+    }
+}
+
 TEST(ArenaSensing, CollisionGivesAnAccelerometerShock)
 {
     ArenaSimulation simulation(empty_arena(), 1, {});

@@ -85,6 +85,8 @@ constexpr double gravity = 981; // cm/s²
 constexpr double adc_maximum = 4095;
 
 constexpr uint16_t selector_positions = 16;
+constexpr uint8_t selector_bits = 4;
+static_assert(selector_positions == 1u << selector_bits);
 // The microphones' analog inputs (AN2..AN4), as a scan's channel mask.
 constexpr unsigned microphone_count = EPUCK_ADC_ACCELEROMETER_X - EPUCK_ADC_MICROPHONE_0;
 constexpr uint16_t microphone_channels = ((1u << microphone_count) - 1u) << EPUCK_ADC_MICROPHONE_0;
@@ -201,6 +203,19 @@ bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
     }
 }
 
+uint16_t world_inputs_read(void *context, epuck_pin first, uint8_t count, uint64_t cycle)
+{
+    // The selector's bits, which the firmware reads every millisecond, at
+    // once.
+    if (first == EPUCK_PIN_SELECTOR_0 && count == selector_bits)
+        return state_of(context).selector & (selector_positions - 1u);
+    uint16_t levels = 0;
+    for (uint8_t i = 0; i < count; i++)
+        if (world_pin_read(context, epuck_pin(first + i), cycle))
+            levels |= uint16_t(1u << i);
+    return levels;
+}
+
 uint64_t world_next_input_change(void *context, uint64_t after_cycle)
 {
     uint64_t change = state_of(context).remote.next_change(after_cycle);
@@ -251,6 +266,11 @@ void phase_written(RobotState &state, Motor motor, epuck_pin first)
 void world_pin_written(void *context, epuck_pin pin, bool high, uint64_t)
 {
     RobotState &state = state_of(context);
+    // A line driven as it was changes nothing (the lines' pattern was seen
+    // when it was last written): a motor's step drives its two steady
+    // lines again, a thousand times a second.
+    if (state.output[pin] == high)
+        return;
     state.output[pin] = high;
     if (pin >= EPUCK_PIN_MOTOR_LEFT_A && pin <= EPUCK_PIN_MOTOR_LEFT_D)
         phase_written(state, left_motor, EPUCK_PIN_MOTOR_LEFT_A);
@@ -690,7 +710,8 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
                          world_next_input_change,
                          world_adc_read_channels,
                          world_adc_channels_steady,
-                         world_camera_every_second_pixel };
+                         world_camera_every_second_pixel,
+                         world_inputs_read };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);

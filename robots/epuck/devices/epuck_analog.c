@@ -34,6 +34,13 @@ static epuck_analog_source source_at(uint8_t count)
     return EPUCK_ANALOG_MICROPHONES;
 }
 
+// The cycle position after `count` (a division costs more than this
+// test, 16,384 times a second).
+static uint8_t following(uint8_t count)
+{
+    return (uint8_t)(count + 1u == EPUCK_ANALOG_CYCLE ? 0u : count + 1u);
+}
+
 static void scan_finished(void *context, const uint16_t *values, uint8_t count)
 {
     epuck_analog *analog = context;
@@ -54,18 +61,33 @@ static void scan_finished(void *context, const uint16_t *values, uint8_t count)
         break;
     }
     analog->previous = analog->scanning;
-    analog->count = (uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE);
-    next = source_at((uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE));
+    analog->count = following(analog->count);
+    next = source_at(following(analog->count));
     if (source_channels(analog, next) != source_channels(analog, analog->scanning))
         epuck_board_adc_scan_select(analog->board, source_channels(analog, next));
     analog->scanning = next;
 }
 
-// How many scans from cycle position `position` on come before position
-// `other` (0 for `other` itself).
-static uint8_t scans_before(uint8_t position, uint8_t other)
+// The positions of the other sources, in the order microphone_scans_from
+// takes them.
+typedef char
+  other_sources_in_cycle_order[COUNT_LIT_FINISHED < COUNT_ACCELEROMETER_FINISHED &&
+                                   COUNT_ACCELEROMETER_FINISHED + 1u == COUNT_AMBIENT_FINISHED &&
+                                   COUNT_AMBIENT_FINISHED < EPUCK_ANALOG_CYCLE
+                                 ? 1
+                                 : -1];
+
+// How many scans from cycle position `position` on convert the microphones
+// before the next scan of another source (0 at that scan).
+static uint8_t microphone_scans_from(uint8_t position)
 {
-    return (uint8_t)((other + EPUCK_ANALOG_CYCLE - position) % EPUCK_ANALOG_CYCLE);
+    if (position <= COUNT_LIT_FINISHED)
+        return (uint8_t)(COUNT_LIT_FINISHED - position);
+    if (position <= COUNT_AMBIENT_FINISHED)
+        return (uint8_t)(position <= COUNT_ACCELEROMETER_FINISHED
+                           ? COUNT_ACCELEROMETER_FINISHED - position
+                           : 0u);
+    return (uint8_t)(EPUCK_ANALOG_CYCLE - position + COUNT_LIT_FINISHED);
 }
 
 // A run of scans reading the same values (a simulated board's silent
@@ -85,20 +107,21 @@ static uint16_t scans_finished(void *context, const uint16_t *values, uint8_t co
     }
     // The run's first scan finishes at this cycle position; the scans up
     // to the next position of another source convert the microphones.
-    first = (uint8_t)((analog->count + 1u) % EPUCK_ANALOG_CYCLE);
-    microphone_scans = scans_before(first, COUNT_ACCELEROMETER_FINISHED);
-    if (scans_before(first, COUNT_AMBIENT_FINISHED) < microphone_scans)
-        microphone_scans = scans_before(first, COUNT_AMBIENT_FINISHED);
-    if (scans_before(first, COUNT_LIT_FINISHED) < microphone_scans)
-        microphone_scans = scans_before(first, COUNT_LIT_FINISHED);
+    first = following(analog->count);
+    microphone_scans = microphone_scans_from(first);
     run = scans < microphone_scans ? scans : microphone_scans;
     // The scans of the run that leave the next one to the microphones.
     scans = run == microphone_scans ? (uint16_t)(run - 1u) : run;
     if (scans > 0u) {
+        uint16_t count_after = (uint16_t)(analog->count + scans);
         epuck_microphones_sampled_run(
           analog->microphones, values, analog->previous == EPUCK_ANALOG_MICROPHONES, scans);
         analog->previous = EPUCK_ANALOG_MICROPHONES;
-        analog->count = (uint8_t)((analog->count + scans) % EPUCK_ANALOG_CYCLE);
+        // A run stops short of the next cycle position of another source,
+        // so it wraps round the cycle once at most.
+        analog->count =
+          (uint8_t)(count_after >= EPUCK_ANALOG_CYCLE ? count_after - EPUCK_ANALOG_CYCLE
+                                                      : count_after);
     }
     if (scans < run)
         scan_finished(context, values, count);

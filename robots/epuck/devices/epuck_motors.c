@@ -6,6 +6,7 @@
 #define MICROSECONDS_PER_SECOND 1000000ul
 #define PHASE_COUNT             4u
 #define PHASE_PINS              4u
+#define ALL_PHASE_LINES         0xFu
 
 // The full-step sequence, two coils on at a time (hardware §3.6): bit 3 is
 // phase A, bit 0 phase D.
@@ -26,15 +27,19 @@ static epuck_timer motor_timer(const epuck_motor *motor)
     return motor->side == EPUCK_MOTOR_LEFT ? EPUCK_TIMER_MOTOR_LEFT : EPUCK_TIMER_MOTOR_RIGHT;
 }
 
-// Drives the four phase lines with `pattern` (bit 3 = A ... bit 0 = D).
+// Drives the four phase lines with `pattern` (bit 3 = A ... bit 0 = D):
+// those that change, two a step.
 static void write_phases(epuck_motor *motor, uint8_t pattern)
 {
     uint8_t i;
     epuck_pin pin = first_pin(motor);
+    uint8_t changed = (uint8_t)(motor->lines ^ pattern);
 
     for (i = 0; i < PHASE_PINS; i++)
-        epuck_board_pin_write(
-          motor->board, (epuck_pin)(pin + i), ((pattern >> (PHASE_PINS - 1u - i)) & 1u) != 0);
+        if ((changed >> (PHASE_PINS - 1u - i)) & 1u)
+            epuck_board_pin_write(
+              motor->board, (epuck_pin)(pin + i), ((pattern >> (PHASE_PINS - 1u - i)) & 1u) != 0);
+    motor->lines = pattern;
 }
 
 // The timer's callback: one step in the direction of the speed. The motors
@@ -61,6 +66,8 @@ void epuck_motor_init(epuck_motor *motor, hal_board *board, epuck_motor_side sid
     motor->phase = 0;
     motor->steps = 0;
     epuck_board_timer_stop(board, motor_timer(motor));
+    // Whatever the lines were driven to before, every one is driven low.
+    motor->lines = ALL_PHASE_LINES;
     write_phases(motor, 0);
 }
 

@@ -20,6 +20,7 @@ typedef struct epuck_motor {
     epuck_motor_side side;
     int16_t speed;  // steps/s, within ±EPUCK_MOTOR_MAX_SPEED
     uint8_t phase;  // index into the full-step sequence, 0..3
+    uint8_t lines;  // the phase lines as last driven (bit 3 = A ... bit 0 = D)
     uint16_t steps; // steps made, forward counting up (wraps)
 } epuck_motor;
 

@@ -10,15 +10,9 @@
 
 uint16_t epuck_selector_read(hal_board *board)
 {
-    uint16_t position = 0;
-    uint16_t bit;
+    uint16_t levels = epuck_board_pins_read(board, EPUCK_PIN_SELECTOR_0, SELECTOR_BITS);
 
-    for (bit = 0; bit < SELECTOR_BITS; bit++) {
-        bool high = epuck_board_pin_read(board, (epuck_pin)(EPUCK_PIN_SELECTOR_0 + bit));
-        if (high == (EPUCK_SELECTOR_ACTIVE_HIGH != 0))
-            position = (uint16_t)(position | (1u << bit));
-    }
-    return position;
+    return (uint16_t)(EPUCK_SELECTOR_ACTIVE_HIGH ? levels : ~levels & ((1u << SELECTOR_BITS) - 1u));
 }
 
 uint16_t epuck_selector_node_id(uint16_t position)

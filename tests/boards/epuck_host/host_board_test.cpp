@@ -160,6 +160,42 @@ TEST_F(HostBoard, AdcScansRunAt16384HzWithFlatWorldValues)
     EXPECT_EQ(epuck_board_adc_read(board.get(), EPUCK_ADC_ACCELEROMETER_Z), 2048 + 768);
 }
 
+// A run of scans the world holds steady (the flat world's) goes to the
+// firmware at once, before the timers due during it; each timer still sees
+// its own cycle.
+struct Runs {
+    hal_board *board;
+    std::vector<std::pair<uint64_t, uint16_t>> offered; // cycle, scans
+};
+uint16_t take_run(void *context, const uint16_t *, uint8_t, uint16_t scans)
+{
+    auto *runs = static_cast<Runs *>(context);
+    runs->offered.push_back({ host_board_cycles(runs->board), scans });
+    return scans;
+}
+
+TEST_F(HostBoard, SteadyScanRunsGoBeforeTheTimersDueDuringThem)
+{
+    Runs runs{ board.get(), {} };
+    Recorder recorder{ board.get(), {} };
+    Tag agenda{ &recorder, 0 };
+    ASSERT_TRUE(epuck_board_adc_scan_start(board.get(), 0x001C, keep_scan, &runs));
+    epuck_board_adc_scan_runs(board.get(), take_run);
+    ASSERT_TRUE(epuck_board_timer_start(board.get(), EPUCK_TIMER_SPARE, 100, record, &agenda));
+    const uint64_t millisecond = uint64_t(FCY / 1000);
+    const uint64_t scan_period = uint64_t(FCY / 16384);
+    const uint64_t timer_period = uint64_t(std::round(100e-6 * FCY));
+    host_board_advance(board.get(), millisecond);
+    // Every scan of the millisecond in one run, from the first scan's cycle.
+    ASSERT_EQ(runs.offered.size(), 1u);
+    EXPECT_EQ(runs.offered[0].first, scan_period);
+    EXPECT_EQ(runs.offered[0].second, millisecond / scan_period);
+    ASSERT_EQ(recorder.firings.size(), millisecond / timer_period);
+    for (size_t k = 0; k < recorder.firings.size(); k++)
+        EXPECT_EQ(recorder.firings[k].cycle, (k + 1) * timer_period) << k;
+    EXPECT_EQ(host_board_cycles(board.get()), millisecond);
+}
+
 TEST_F(HostBoard, FlatWorldInputsAreNeutral)
 {
     for (int bit = 0; bit < 4; bit++)
