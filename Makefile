@@ -134,10 +134,11 @@ $(foreach v,$(VARIANTS),$(foreach t,$(TESTS),\
   $(eval $(call objects,$(v),$(call own_files,$($(t)_SOURCES))) $(BUILD)/$(v)/tests/$(t): | $(TEST_DEPS_STAMP))))
 $(foreach v,$(VARIANTS),$(foreach p,$(filter bench-%,$(PROGRAMS)),\
   $(eval $(call objects,$(v),$(call own_files,$($(p)_SOURCES))) $(BUILD)/$(v)/bin/$(p): | $(TEST_DEPS_STAMP))))
-$(eval $(call objects,host-sanitize,$(filter tests/%.cpp,$(foreach t,$(TESTS),$($(t)_SOURCES)))): \
-  $(TEST_PRELUDE).gch)
 
 ALL_SOURCES := $(sort $(foreach x,$(LIBRARIES) $(PROGRAMS) $(TESTS),$($(x)_SOURCES)))
+# Every C++ file under tests/ that the sanitized build compiles (tests,
+# their support libraries, benchmarks) includes the precompiled header.
+$(eval $(call objects,host-sanitize,$(filter tests/%.cpp,$(ALL_SOURCES))): $(TEST_PRELUDE).gch)
 -include $(patsubst %.o,%.d,$(foreach v,$(VARIANTS),$(call objects,$(v),$(ALL_SOURCES))))
 
 # --- top-level targets -----------------------------------------------------
