@@ -9,12 +9,6 @@
 
 #define BYTE_BITS 8
 
-// Word positions in `frame`: the header, then the payload.
-#define FRAME_LENGTH  0
-#define FRAME_SOURCE  1
-#define FRAME_TYPE    2
-#define FRAME_PAYLOAD 3
-
 // Payload bytes each host command needs (protocol.md §3): `dest` and the
 // fields after it.
 #define BYTES_FIRST_WORD   2 // dest, or the version of a broadcast
@@ -151,6 +145,8 @@ uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, ui
     // (what node_receive_wanted asks for), not a byte at a time.
     while (taken < count) {
         uint16_t part = node_receive_wanted(node, now_ms);
+        uint8_t *place = node_receive_place(node);
+        uint16_t i;
 
         if (part == 0)
             break;
@@ -161,14 +157,9 @@ uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, ui
         }
         if (part > count - taken)
             part = (uint16_t)(count - taken);
+        for (i = 0; i < part; i++)
+            place[i] = bytes[taken + i];
         taken = (uint16_t)(taken + part);
-        {
-            uint8_t *place = node_receive_place(node);
-            uint16_t i;
-
-            for (i = 0; i < part; i++)
-                place[i] = *bytes++;
-        }
         frame_grew(node, part);
     }
     return taken;

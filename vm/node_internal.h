@@ -6,6 +6,12 @@
 
 #include "node.h"
 
+// Word positions in a frame: the header, then the payload.
+#define FRAME_LENGTH  0
+#define FRAME_SOURCE  1
+#define FRAME_TYPE    2
+#define FRAME_PAYLOAD 3
+
 // The frame writer streams one frame through the transport: begin announces
 // the payload length, put functions append, end completes it. The frame is
 // well-formed whatever the callers do: bytes beyond the announced length are

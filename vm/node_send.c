@@ -16,11 +16,6 @@
 // The header goes into the transmit buffer at once, before any piece leaves.
 typedef char header_fits_a_piece[NODE_TRANSMIT_CHUNK > NODE_HEADER_SIZE ? 1 : -1];
 
-// Header word positions in the transmit buffer, in bytes.
-#define HEADER_LENGTH 0
-#define HEADER_SOURCE 2
-#define HEADER_TYPE   4
-
 static void store_u16(uint8_t *bytes, uint16_t value)
 {
     bytes[0] = (uint8_t)(value & BYTE_MASK);
@@ -51,9 +46,9 @@ void node_frame_begin(node_state *node, uint16_t type, uint16_t payload_length)
         payload_length = NODE_MAX_PAYLOAD;
     // Every message starts a frame: its header is stored directly, not a
     // byte at a time through the checks of node_frame_put_byte.
-    store_u16(node->transmit + HEADER_LENGTH, payload_length);
-    store_u16(node->transmit + HEADER_SOURCE, node->vm.node_id);
-    store_u16(node->transmit + HEADER_TYPE, type);
+    store_u16(node->transmit + 2 * FRAME_LENGTH, payload_length);
+    store_u16(node->transmit + 2 * FRAME_SOURCE, node->vm.node_id);
+    store_u16(node->transmit + 2 * FRAME_TYPE, type);
     node->transmit_fill = NODE_HEADER_SIZE;
     node->transmit_left = payload_length;
 }

@@ -266,9 +266,8 @@ void phase_written(RobotState &state, Motor motor, epuck_pin first)
 void world_pin_written(void *context, epuck_pin pin, bool high, uint64_t)
 {
     RobotState &state = state_of(context);
-    // A line driven as it was changes nothing (the lines' pattern was seen
-    // when it was last written): a motor's step drives its two steady
-    // lines again, a thousand times a second.
+    // A line driven as it was changes nothing: the lines' pattern was seen
+    // when it was last written.
     if (state.output[pin] == high)
         return;
     state.output[pin] = high;
