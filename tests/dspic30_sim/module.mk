@@ -61,9 +61,15 @@ $(TORTURE_OUT)/support/dspic30_%.o: ports/dspic30/dspic30_%.c ports/dspic30/dspi
 $(TORTURE_OUT)/support/%.o: $(TORTURE_SOURCE)/support/%.c | $(PIC30_TOOLCHAIN)
 	@mkdir -p $(@D)
 	$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) $(PIC30_GCC_INCLUDES) -c $< -o $@
+# The tests compile without -mcpu, which makes the compiler read the whole
+# device database (474 devices, about 0.15 s of each compile, 818 times);
+# the assembler still takes the device (its division timing). The code is
+# the same: the 818 assembly outputs of this toolchain with and without
+# -mcpu differ only in two section names made of random numbers.
+TORTURE_CFLAGS := -Os -Wa,-p30F6014A
 $(TORTURE_OUT)/%.o: $(TORTURE_SOURCE)/tests/%.c | $(PIC30_TOOLCHAIN)
 	@mkdir -p $(@D)
-	@$(PIC30_BIN)/pic30-elf-gcc $(PIC30_CFLAGS) -w $(PIC30_GCC_INCLUDES) \
+	@$(PIC30_BIN)/pic30-elf-gcc $(TORTURE_CFLAGS) -w $(PIC30_GCC_INCLUDES) \
 	    -I$(TORTURE_SOURCE)/support/include -Dmain=torture_main -c $< -o $@
 $(TORTURE_OUT)/%.hex: $(TORTURE_OUT)/%.o $(TORTURE_SUPPORT) $(TORTURE_SCRIPT) $(TORTURE_RUNTIME)/torture_p30f6014a.gld
 	@$(call PIC30_LINK,$(@:.hex=.elf),$(TORTURE_SUPPORT) $<)
