@@ -77,8 +77,10 @@ RunResult run_condition(const arena::Arena &arena,
     // A frame is length, source, type, payload (protocol.md §2); types
     // below NODE_FIRST_SYSTEM_TYPE are user events.
     std::map<uint16_t, unsigned> events_by_node;
-    simulation.network().observe([&events_by_node](const host::Frame &frame) {
-        auto word = [&frame](size_t at) { return uint16_t(frame[at] | frame[at + 1] << 8); };
+    simulation.network().observe([&events_by_node](host::FrameView frame) {
+        auto word = [&frame](size_t at) {
+            return uint16_t(frame.bytes[at] | frame.bytes[at + 1] << 8);
+        };
         constexpr size_t source_offset = 2, type_offset = 4;
         if (word(type_offset) < NODE_FIRST_SYSTEM_TYPE)
             events_by_node[word(source_offset)]++;

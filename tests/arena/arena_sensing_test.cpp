@@ -410,9 +410,9 @@ TEST(ArenaSensing, AnnexCallsAColourBadAfterAKnockOnIt)
     ArenaSimulation simulation(arena, 1, compile("examples/paper-annex.aesl"));
     // A frame is length, source, type (protocol.md §2); user event 0 is `bad`.
     std::map<int, int> bad_by_colour;
-    simulation.network().observe([&](const aseba::host::Frame &frame) {
-        auto word = [&](size_t at) { return int16_t(frame[at] | frame[at + 1] << 8); };
-        if (frame.size() >= 8 && word(4) == 0)
+    simulation.network().observe([&](aseba::host::FrameView frame) {
+        auto word = [&](size_t at) { return int16_t(frame.bytes[at] | frame.bytes[at + 1] << 8); };
+        if (frame.size >= 8 && word(4) == 0)
             bad_by_colour[word(6)]++;
     });
     simulation.run_for(4);

@@ -632,7 +632,7 @@ int run_arena(const Options &options,
         });
     aseba::host::NetworkStatus status(program.definitions.events);
     if (!options.quiet) // the status line is the only reader of the counts
-        network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
+        network.observe([&status](aseba::host::FrameView frame) { status.count(frame); });
     MemoryFiles memories(options, simulation.robot_count(), [&](size_t i) -> host_robot & {
         return simulation.robot(i);
     });
@@ -762,7 +762,7 @@ int main(int argc, char **argv)
     });
     aseba::host::NetworkStatus status(program.definitions.events);
     if (!options.quiet) // the status line is the only reader of the counts
-        network.observe([&status](const aseba::host::Frame &frame) { status.count(frame); });
+        network.observe([&status](aseba::host::FrameView frame) { status.count(frame); });
     MemoryFiles memories(
       options, robots.size(), [&](size_t i) -> host_robot & { return *robots[i]; });
 

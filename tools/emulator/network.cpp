@@ -205,10 +205,10 @@ struct Network::State final : Bus {
     uint64_t frames_moved = 0;
     uint64_t frames_dropped = 0;
     bool relay_robot_events = true;
-    std::function<void(const Frame &)> observer;
-    Frame observed; // a robot's frame for the observer, when no board takes a copy
+    std::function<void(FrameView)> observer;
     std::vector<SharedFrame *> spare_frames; // owned by none, for make_frame; freed with the state
     int passes_without_events = 0;           // service() calls since the last look
+    bool accepted = false;                   // a connection came since service() set it false
 
     ~State()
     {
@@ -256,6 +256,7 @@ struct Network::State final : Bus {
         listener.acceptor.async_accept(
           [this, &listener](std::error_code error, asio::ip::tcp::socket socket) {
               listener.accepting = false;
+              accepted = true;
               if (error == asio::error::operation_aborted)
                   return;
               if (error)
@@ -510,7 +511,7 @@ struct Network::State final : Bus {
         }
     }
 
-    void count(const Frame &frame)
+    void count(FrameView frame)
     {
         frames_moved++;
         if (observer)
@@ -533,37 +534,46 @@ struct Network::State final : Bus {
     void broadcast_from_board(Board &from, FrameView frame) override
     {
         const bool user_event = read_u16(frame.bytes + type_offset) < NODE_FIRST_SYSTEM_TYPE;
+        count(frame);
         if ((!user_event || relay_robot_events) && boards.size() > 1) {
             SharedFrame *shared = make_frame(frame);
-            count(shared->bytes);
             for (auto &board : boards)
                 if (board.get() != &from)
                     enqueue(*board, robots_source, shared);
             release(shared);
-        } else if (observer) {
-            // No other board keeps it: the observer sees a reused buffer.
-            observed.assign(frame.bytes, frame.bytes + frame.size);
-            count(observed);
-        } else {
-            frames_moved++;
         }
         send_to_clients(&from, nullptr, frame);
     }
 
+    // A client's frame goes straight into a board's link when nothing waits
+    // for that board (the order and the turns of the sources are then those
+    // of the queues, which would hand it over at once): a stream of events
+    // from a tool is not copied into a frame of the queues for each of them.
+    // Else it waits in `shared`, made at the first board that needs it.
+    void deliver_from_client(Board &board, uint64_t source, FrameView frame, SharedFrame *&shared)
+    {
+        if (board.waiting_frames == 0 &&
+            host_board_link_deliver(board.board, frame.bytes, uint16_t(frame.size)))
+            return;
+        if (shared == nullptr)
+            shared = make_frame(frame);
+        enqueue(board, source, shared);
+    }
+
     void broadcast_from_client(const Client &from, FrameView frame)
     {
-        SharedFrame *shared = make_frame(frame);
-        count(shared->bytes);
+        SharedFrame *shared = nullptr;
+        count(frame);
         if (from.robot != nullptr) {
             // A client linked directly to one robot talks to it alone.
-            enqueue(*from.robot, from.number, shared);
-            release(shared);
-            return;
+            deliver_from_client(*from.robot, from.number, frame, shared);
+        } else {
+            for (auto &board : boards)
+                deliver_from_client(*board, from.number, frame, shared);
+            send_to_clients(nullptr, &from, frame);
         }
-        for (auto &board : boards)
-            enqueue(*board, from.number, shared);
-        release(shared);
-        send_to_clients(nullptr, &from, frame);
+        if (shared != nullptr)
+            release(shared);
     }
 
     // The next source with frames for `board`, after the last one served;
@@ -676,10 +686,17 @@ void Network::service(int timeout_ms)
         if (state.io.stopped())
             state.io.restart();
         // Waits for the first event if asked to (unless a client has just
-        // been heard), then handles what is ready.
-        if (timeout_ms > 0 && !heard)
-            state.io.run_one_for(std::chrono::milliseconds(timeout_ms));
-        for (int i = 0; i < max_events_per_service && state.io.poll_one() > 0; i++) {
+        // been heard), then handles what is ready. A wait ended by a
+        // client's bytes skips that look: the robots answer them first, and
+        // the look would cost a system call each time a lone client is
+        // answered (the next call sees what else came). A connection may
+        // come with many others: those are all taken at once.
+        state.accepted = false;
+        bool answer_first = timeout_ms > 0 && !heard &&
+                            state.io.run_one_for(std::chrono::milliseconds(timeout_ms)) > 0 &&
+                            !state.accepted;
+        for (int i = 0; !answer_first && i < max_events_per_service && state.io.poll_one() > 0;
+             i++) {
         }
     }
     state.sweep();
@@ -723,7 +740,7 @@ void Network::relay_robot_events(bool relay)
     state_->relay_robot_events = relay;
 }
 
-void Network::observe(std::function<void(const Frame &)> observer)
+void Network::observe(std::function<void(FrameView)> observer)
 {
     state_->observer = std::move(observer);
 }

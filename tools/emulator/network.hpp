@@ -138,8 +138,9 @@ class Network
     // reach every board.
     void relay_robot_events(bool relay);
 
-    // Called with every frame that crosses the bus (for status and logs).
-    void observe(std::function<void(const Frame &)> observer);
+    // Called with every frame that crosses the bus (for status and logs),
+    // borrowed for the call.
+    void observe(std::function<void(FrameView)> observer);
 
   private:
     struct State;

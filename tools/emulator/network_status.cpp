@@ -22,17 +22,18 @@ NetworkStatus::NetworkStatus(std::vector<GlobalEvent> events)
 {
 }
 
-void NetworkStatus::count(const Frame &frame)
+void NetworkStatus::count(FrameView frame)
 {
+    const uint8_t *bytes = frame.bytes;
     frames_++;
-    if (frame.size() < NODE_HEADER_SIZE)
+    if (frame.size < NODE_HEADER_SIZE)
         return;
-    uint16_t type = uint16_t(frame[4] | (frame[5] << 8));
+    uint16_t type = uint16_t(bytes[4] | (bytes[5] << 8));
     if (type >= NODE_FIRST_SYSTEM_TYPE)
         return;
     event_counts_[type]++;
-    if (frame.size() >= NODE_HEADER_SIZE + 2) {
-        auto argument = int16_t(uint16_t(frame[6] | (frame[7] << 8)));
+    if (frame.size >= NODE_HEADER_SIZE + 2) {
+        auto argument = int16_t(uint16_t(bytes[6] | (bytes[7] << 8)));
         first_argument_counts_[type][argument]++;
     }
 }

@@ -22,7 +22,7 @@ class NetworkStatus
     explicit NetworkStatus(std::vector<GlobalEvent> events);
 
     // Counts one frame that crossed the network.
-    void count(const Frame &frame);
+    void count(FrameView frame);
 
     // One line: `seconds` since the start, robots, tools connected, frames
     // per second since the previous line, and the events seen so far.
