@@ -19,6 +19,9 @@
 
 struct robot_devices {
     hal_board *board;
+    // The variables robot_actuate drives, as it last drove them.
+    int16_t driven_speeds[2];
+    int16_t driven_leds[EPUCK_RING_LED_COUNT];
     epuck_motor left_motor;
     epuck_motor right_motor;
     epuck_leds leds;
