@@ -24,14 +24,14 @@ typedef char local_events_fit_a_word[ROBOT_LOCAL_EVENT_COUNT <= 16 ? 1 : -1];
 // node_poll).
 static bool receive_from_link(firmware_state *firmware, uint32_t now)
 {
-    uint16_t wanted;
+    uint16_t wanted = node_receive_wanted(&firmware->node, now);
 
-    while ((wanted = node_receive_wanted(&firmware->node, now)) > 0) {
+    while (wanted > 0) {
         uint16_t count =
           hal_link_receive(firmware->board, node_receive_place(&firmware->node), wanted);
         if (count == 0)
             return false;
-        node_receive_placed(&firmware->node, count, now);
+        wanted = node_receive_placed(&firmware->node, count, now);
     }
     return true;
 }

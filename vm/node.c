@@ -92,17 +92,25 @@ bool node_receive_ready(const node_state *node)
     return !node->frame_ready;
 }
 
-uint16_t node_receive_wanted(node_state *node, uint32_t now_ms)
+// What the frame lacks: the header, then the payload it announces.
+static uint16_t bytes_lacking(const node_state *node)
 {
     if (node->frame_ready)
         return 0;
-    expire_partial_frame(node, now_ms);
     // While resynchronising, bytes are dropped one by one until a silence.
     if (node->resynchronising)
         return 1;
     if (node->received < NODE_HEADER_SIZE)
         return (uint16_t)(NODE_HEADER_SIZE - node->received);
     return (uint16_t)(NODE_HEADER_SIZE + frame_word(node, FRAME_LENGTH) - node->received);
+}
+
+uint16_t node_receive_wanted(node_state *node, uint32_t now_ms)
+{
+    if (node->frame_ready)
+        return 0;
+    expire_partial_frame(node, now_ms);
+    return bytes_lacking(node);
 }
 
 uint8_t *node_receive_place(node_state *node)
@@ -127,14 +135,16 @@ static void frame_grew(node_state *node, uint16_t count)
     }
 }
 
-void node_receive_placed(node_state *node, uint16_t count, uint32_t now_ms)
+uint16_t node_receive_placed(node_state *node, uint16_t count, uint32_t now_ms)
 {
     if (count == 0)
-        return;
+        return node_receive_wanted(node, now_ms);
     node->last_byte_ms = now_ms;
     // While resynchronising, the byte in place is dropped.
     if (!node->resynchronising)
         frame_grew(node, count);
+    // A byte came at now_ms: nothing partial has expired.
+    return bytes_lacking(node);
 }
 
 uint16_t node_receive(node_state *node, const uint8_t *bytes, uint16_t count, uint32_t now_ms)

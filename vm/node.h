@@ -155,9 +155,10 @@ uint16_t node_receive_wanted(node_state *node, uint32_t now_ms);
 // Where the bytes node_receive_wanted just asked for go, so that a caller
 // copies them there from its own buffer once instead of through one of its
 // own and node_receive. Then node_receive_placed says how many it put there,
-// no more than asked for, at the same `now_ms`.
+// no more than asked for, at the same `now_ms`, and answers what
+// node_receive_wanted would answer next.
 uint8_t *node_receive_place(node_state *node);
-void node_receive_placed(node_state *node, uint16_t count, uint32_t now_ms);
+uint16_t node_receive_placed(node_state *node, uint16_t count, uint32_t now_ms);
 
 // One step of the main loop, never blocking (bytecode.md §6.5): discards a
 // stalled partial frame, runs the VM for at most NODE_STEP_BUDGET

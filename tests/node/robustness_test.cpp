@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 
 using namespace node_test;
@@ -119,6 +120,29 @@ TEST(NodeReceive, WantsWhatTheFrameLacks)
     EXPECT_EQ(node->errors.truncated, 1);
     ASSERT_EQ(harness.frames.size(), 1u);
     EXPECT_EQ(hex(harness.frames[0]), hex(node_present));
+}
+
+// Bytes placed straight into the frame (node_receive_place) are counted as
+// received ones, and node_receive_placed answers what the frame lacks next,
+// as node_receive_wanted would.
+TEST(NodeReceive, PlacedBytesAnswerWhatTheFrameLacksNext)
+{
+    Harness harness(preset("tiny"), 1);
+    node_state *node = &harness.node();
+    auto place = [&](size_t from, uint16_t count, uint32_t now) {
+        std::copy_n(list_nodes.data() + from, count, node_receive_place(node));
+        return node_receive_placed(node, count, now);
+    };
+    ASSERT_EQ(node_receive_wanted(node, 0), 6);
+    EXPECT_EQ(place(0, 6, 0), 2); // the header asks for one word of payload
+    EXPECT_EQ(place(6, 2, 1), 0); // complete: nothing until node_poll
+    EXPECT_EQ(node_receive_placed(node, 0, 1), node_receive_wanted(node, 1));
+    node_poll(node, 1);
+    ASSERT_EQ(harness.frames.size(), 1u);
+    EXPECT_EQ(hex(harness.frames[0]), hex(node_present));
+    EXPECT_EQ(place(0, 4, 2), 2);
+    EXPECT_EQ(node_receive_placed(node, 0, 10000), 6); // a stall drops the partial frame
+    EXPECT_EQ(node->errors.truncated, 1);
 }
 
 TEST(NodeReceive, ClockWrapAroundIsNotAStall)
