@@ -175,11 +175,31 @@ done
 
 # --- node and simulator ----------------------------------------------------
 echo "bench: node" >&2
-read -r ours_latency_median ours_latency_mean ours_events < <("$bin/bench-node" emu)
-read -r ref_latency_median ref_latency_mean ref_events < <("$bin/bench-node" reference)
+# The median of several runs of each node, interleaved: one run of either
+# moves by a third from one minute to the next on a shared machine (the
+# processes' wake-ups across its two cores), the median much less.
+median_of() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
+node_runs=5
+node_run_events=100000
+: >"$scratch/node-ours"
+: >"$scratch/node-reference"
+for _ in $(seq $node_runs); do
+    "$bin/bench-node" emu $node_run_events >>"$scratch/node-ours"
+    "$bin/bench-node" reference $node_run_events >>"$scratch/node-reference"
+done
+column_median() { cut -f"$1" "$2" | median_of; } # column file
+ours_latency_median=$(column_median 1 "$scratch/node-ours")
+ours_latency_mean=$(column_median 2 "$scratch/node-ours")
+ours_events=$(column_median 3 "$scratch/node-ours")
+ref_latency_median=$(column_median 1 "$scratch/node-reference")
+ref_latency_mean=$(column_median 2 "$scratch/node-reference")
+ref_events=$(column_median 3 "$scratch/node-reference")
+ours_events_range=$(cut -f3 "$scratch/node-ours" | sort -n | sed -n '1p;$p' | paste -sd'-')
+ref_events_range=$(cut -f3 "$scratch/node-reference" | sort -n | sed -n '1p;$p' | paste -sd'-')
 # Host instructions per user event: the node's whole process under
 # callgrind, the difference between runs of 20,000 and 60,000 events over
-# the 40,000 more (start-up, loading and the GET_VARIABLES rounds cancel).
+# the 40,000 more (start-up, loading and the GET_VARIABLES rounds cancel);
+# the median of three such pairs, as the events a read brings vary.
 node_run_instructions() { # emu|reference events
     BENCH_NODE_UNDER="valgrind --tool=callgrind --callgrind-out-file=$scratch/node.out" \
         "$bin/bench-node" "$1" "$2" >/dev/null
@@ -187,9 +207,11 @@ node_run_instructions() { # emu|reference events
 }
 node_event_instructions() { # emu|reference
     local fewer more
-    fewer=$(node_run_instructions "$1" 20000)
-    more=$(node_run_instructions "$1" 60000)
-    divide "$((more - fewer))" 40000 %.0f
+    for _ in 1 2 3; do
+        fewer=$(node_run_instructions "$1" 20000)
+        more=$(node_run_instructions "$1" 60000)
+        divide "$((more - fewer))" 40000 "%.0f\n"
+    done | median_of
 }
 echo "bench: node (callgrind)" >&2
 ours_node_instructions=$(node_event_instructions emu)
@@ -354,7 +376,7 @@ table=$(
     echo "| compiler: generated 1,000-line script ($(compiler_field generated-1000 4) words), ms, mean of $compiler_runs | $(compiler_field generated-1000 2) | $(compiler_field generated-1000 3) | $(ratio "$(compiler_field generated-1000 2)" "$(compiler_field generated-1000 3)") | ≤ ${compiler_goal_ratio}× |"
     echo "| compiler: the whole process, start-up included: \`asebac examples/paper-annex.aesl -o /dev/null\`; the reference behind the least of a command (bench-reference-compile) on the same controller in today's dialect, ms, median of $compiler_process_runs | $process_ours | $process_reference | $(ratio "$process_ours" "$process_reference") | ≤ ${compiler_goal_ratio}× |"
     echo "| node: GET_VARIABLES → VARIABLES round trip, loopback TCP, median µs (mean) | $ours_latency_median ($ours_latency_mean) | $ref_latency_median ($ref_latency_mean) | $(ratio "$ours_latency_median" "$ref_latency_median") | |"
-    echo "| node: user events per second (ping → pong, 16 in flight) | $ours_events | $ref_events | $(ratio "$ours_events" "$ref_events") | ≥ ${node_goal_ratio}× |"
+    echo "| node: user events per second (ping → pong, 16 in flight), median of $node_runs runs of $node_run_events (range) | $ours_events ($ours_events_range) | $ref_events ($ref_events_range) | $(ratio "$ours_events" "$ref_events") | ≥ ${node_goal_ratio}× |"
     echo "| node: host instructions per user event (ping → pong), the whole process, start-up excluded (callgrind) | $ours_node_instructions | $ref_node_instructions | $(ratio "$ours_node_instructions" "$ref_node_instructions") | < 1× |"
     echo "| DSP: host instructions for one 64-point dsp.fft (callgrind) | $fft_instructions | - | - | |"
     echo "| DSP: host instructions for one dsp.fir, 64 samples through 32 taps (callgrind) | $fir_instructions | - | - | |"
@@ -500,11 +522,12 @@ cores=$(nproc)
     echo "- Node: \`bench-node emu\` starts \`epuck-emu --robots 1\`, \`bench-node"
     echo "  reference\` starts \`asebadummynode\`, each on a free loopback port, and"
     echo "  talks to it directly (TCP_NODELAY, TCP_QUICKACK): 2,000 GET_VARIABLES of 16"
-    echo "  words, then 20,000 user events through a handler \`onevent ping emit pong\`"
-    echo "  loaded with SET_BYTECODE, RESET, RUN. Instructions: the same with the"
+    echo "  words, then $node_run_events user events through a handler \`onevent ping emit pong\`"
+    echo "  loaded with SET_BYTECODE, RESET, RUN; $node_runs runs of each node, interleaved,"
+    echo "  and the median of each. Instructions: the same with the"
     echo "  node under \`valgrind --tool=callgrind\` (BENCH_NODE_UNDER), 20,000 then"
     echo "  60,000 events (\`bench-node emu 60000\`): the difference of the whole"
-    echo "  process's counts over the 40,000 more."
+    echo "  process's counts over the 40,000 more, the median of three such pairs."
     echo "- DSP: \`valgrind --tool=callgrind --toggle-collect=nat_dsp_fft_function"
     echo "  bench-dsp fft\` (and \`fir\` with nat_dsp_fir_function) counts one call on"
     echo "  fixed data; the code size sums .text of native_functions/nat_dsp*.c built"
