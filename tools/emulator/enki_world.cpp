@@ -428,6 +428,41 @@ void FreshIRSensor::start_step(const Enki::Matrix22 &owner_rotation)
     }
 }
 
+namespace
+{
+// Constant-initialised: no guard at each use.
+constinit thread_local IrNoise thread_ir_noise;
+} // namespace
+
+IrNoise &ir_noise()
+{
+    return thread_ir_noise;
+}
+
+void seed_ir_noise(uint32_t seed)
+{
+    thread_ir_noise.reseed(seed);
+}
+
+void FreshIRSensor::finalize(double, Enki::World *)
+{
+    // Debian's IRSensor::finalize operation for operation (its machine
+    // code: the three rays' sum, then Enki's gaussianRand(sum, noiseSd),
+    // clamped to 0..m), with rand() from ir_noise().
+    IrNoise &noise = thread_ir_noise;
+    const double sum = rayValues[0] + rayValues[1] + rayValues[2];
+    double x, y, squared;
+    do {
+        x = double(noise.next()) / IrNoise::maximum * 2 - 1;
+        y = double(noise.next()) / IrNoise::maximum * 2 - 1;
+        squared = x * x + y * y;
+    } while (squared > 1.0 || squared == 0);
+    double value = noiseSd * y * std::sqrt(-2.0 * std::log(squared) / squared) + sum;
+    value = value < m ? value : m;
+    finalValue = value > 0 ? value : 0;
+    finalDist = inverseResponseFunction(finalValue);
+}
+
 void FreshIRSensor::objectStep(double dt, Enki::World *world, Enki::PhysicalObject *object)
 {
     if (height > object->getHeight())
@@ -675,7 +710,7 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
       std::make_unique<PartitionedWorld>(arena.width, arena.height, to_enki(arena.wall_color));
     world_->takeObjectOwnership = false;
     world_->setRandomSeed(seed);
-    std::srand(seed); // Enki's IR noise draws from rand()
+    seed_ir_noise(seed); // where Enki's IR sensors draw from rand()
 
     size_t robots_bytes = aligned(arena.robots.size() * sizeof(EnkiEpuck));
     size_t total = robots_bytes + arena.obstacles.size() * sizeof(Enki::PhysicalObject);
