@@ -149,8 +149,10 @@ void host_board_advance(hal_board *board, uint64_t cycles)
             continue;
         // The time goes back to the timer's when a run of scans went past it.
         board->cycles = due;
-        // Firmware code other than the scan's ran: ask the world again.
-        input_known = false;
+        // Firmware code other than the scan's ran: ask the world again,
+        // unless its answers do not depend on the firmware.
+        if (!board->world->input_changes_fixed)
+            input_known = false;
         if (event == EVENT_INPUT_CHANGE) {
             for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
                 if (board->edge_callback[pin])

@@ -107,6 +107,8 @@ struct EnkiWorld::RobotState {
     // Enki step (+ forward).
     int phase[2] = { 0, 0 };
     int32_t steps[2] = { 0, 0 };
+    // Per motor: its phase lines as driven (bit 3 = A .. bit 0 = D).
+    uint8_t lines[2] = { 0, 0 };
     double wheel_speed[2] = { 0, 0 };
     std::array<uint8_t, 256> camera_registers{};
     // The row last rendered, for the step it was rendered in.
@@ -247,15 +249,14 @@ constexpr std::array<int8_t, 16> phase_of_pattern = [] {
 
 // A motor's phase lines changed: when they show the next pattern of the
 // sequence, or the one before, the motor made a step.
-void phase_written(RobotState &state, Motor motor, epuck_pin first)
+void phase_written(RobotState &state, Motor motor)
 {
-    const unsigned pattern =
-      unsigned(state.output[first]) << 3 | unsigned(state.output[first + 1]) << 2 |
-      unsigned(state.output[first + 2]) << 1 | unsigned(state.output[first + 3]);
-    const int index = phase_of_pattern[pattern];
+    const int index = phase_of_pattern[state.lines[motor]];
     if (index < 0)
         return;
-    int change = (index - state.phase[motor] + phase_count) % phase_count;
+    // Indices 0..3: the change forward, modulo 4.
+    static_assert(phase_count == 4);
+    int change = (index - state.phase[motor]) & (phase_count - 1);
     state.phase[motor] = index;
     // The motors are mirror-mounted: forward steps the left motor's phase
     // index down and the right motor's up (§3.6). A jump of two is no step.
@@ -271,10 +272,18 @@ void world_pin_written(void *context, epuck_pin pin, bool high, uint64_t)
     if (state.output[pin] == high)
         return;
     state.output[pin] = high;
-    if (pin >= EPUCK_PIN_MOTOR_LEFT_A && pin <= EPUCK_PIN_MOTOR_LEFT_D)
-        phase_written(state, left_motor, EPUCK_PIN_MOTOR_LEFT_A);
-    else if (pin >= EPUCK_PIN_MOTOR_RIGHT_A && pin <= EPUCK_PIN_MOTOR_RIGHT_D)
-        phase_written(state, right_motor, EPUCK_PIN_MOTOR_RIGHT_A);
+    static_assert(EPUCK_PIN_MOTOR_LEFT_D == EPUCK_PIN_MOTOR_LEFT_A + phase_count - 1 &&
+                  EPUCK_PIN_MOTOR_RIGHT_D == EPUCK_PIN_MOTOR_RIGHT_A + phase_count - 1);
+    unsigned line = unsigned(pin) - EPUCK_PIN_MOTOR_LEFT_A;
+    Motor motor = left_motor;
+    if (line >= phase_count) {
+        line = unsigned(pin) - EPUCK_PIN_MOTOR_RIGHT_A;
+        motor = right_motor;
+        if (line >= phase_count)
+            return;
+    }
+    state.lines[motor] ^= uint8_t(8u >> line);
+    phase_written(state, motor);
 }
 
 bool world_i2c_write(void *context,
@@ -745,7 +754,8 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
                          world_adc_read_channels,
                          world_adc_channels_steady,
                          world_camera_every_second_pixel,
-                         world_inputs_read };
+                         world_inputs_read,
+                         true };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);
