@@ -4,8 +4,6 @@
 
 #include "host_board.h"
 
-#define SCAN_PERIOD_CYCLES (HOST_CYCLES_PER_SECOND / EPUCK_ADC_SCAN_RATE_HZ)
-
 uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
 {
     if (channel >= EPUCK_ADC_CHANNEL_COUNT || board->adc_scan_mask != 0)
@@ -44,7 +42,7 @@ bool epuck_board_adc_scan_start(hal_board *board,
     board->adc_scan_context = context;
     board->adc_scan_mask = channel_mask;
     board->adc_scan_channels = count;
-    board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
+    board->adc_next_due = board->cycles + HOST_ADC_SCAN_PERIOD_CYCLES;
     return true;
 }
 
@@ -69,54 +67,6 @@ void epuck_board_adc_scan_stop(hal_board *board)
 void epuck_board_adc_scan_runs(hal_board *board, epuck_adc_scan_run_callback callback)
 {
     board->adc_scan_run_callback = callback;
-}
-
-// The values of the scanned channels at the board's time, into `values`;
-// returns how many.
-static uint8_t read_scan(hal_board *board, uint16_t *values)
-{
-    const host_world *world = board->world;
-    uint8_t count = 0;
-    uint8_t channel;
-    uint16_t mask;
-
-    if (world->adc_read_channels) {
-        world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
-        count = board->adc_scan_channels;
-    } else {
-        // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
-        for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
-            channel = (uint8_t)__builtin_ctz(mask);
-            values[count++] = world->adc_read(world->context, channel, board->cycles);
-        }
-    }
-    return count;
-}
-
-void host_board_run_adc_scans(hal_board *board, uint64_t until);
-
-void host_board_run_adc_scans(hal_board *board, uint64_t until)
-{
-    const host_world *world = board->world;
-    uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
-    uint8_t count = read_scan(board, values);
-    uint64_t due = (until - board->adc_next_due) / SCAN_PERIOD_CYCLES + 1u;
-    uint16_t taken;
-
-    if (due > 1u && board->adc_scan_run_callback && world->adc_channels_steady &&
-        world->adc_channels_steady(world->context, board->adc_scan_mask)) {
-        // The scans due up to `until` all read what this one reads.
-        taken = board->adc_scan_run_callback(
-          board->adc_scan_context, values, count, (uint16_t)(due < UINT16_MAX ? due : UINT16_MAX));
-        if (taken < 1u)
-            taken = 1u;
-        board->cycles = board->adc_next_due + (uint64_t)(taken - 1u) * SCAN_PERIOD_CYCLES;
-        board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
-        return;
-    }
-    board->adc_next_due += SCAN_PERIOD_CYCLES;
-    if (board->adc_scan_callback)
-        board->adc_scan_callback(board->adc_scan_context, values, count);
 }
 
 void epuck_board_pin_write(hal_board *board, epuck_pin pin, bool high)
