@@ -86,19 +86,29 @@ bool epuck_board_pin_read(hal_board *board, epuck_pin pin)
     return board->world->pin_read(board->world->context, pin, board->cycles);
 }
 
-uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count)
+// Apart, so that the world's answer at once (every millisecond) costs no
+// saving of the registers this loop needs.
+__attribute__((noinline)) static uint16_t pins_read_one_by_one(hal_board *board,
+                                                               epuck_pin first,
+                                                               uint8_t count)
 {
-    const host_world *world = board->world;
     uint16_t levels = 0;
     uint8_t i;
 
-    if (world->inputs_read && (uint16_t)first >= EPUCK_PIN_FIRST_INPUT &&
-        (uint16_t)first + count <= EPUCK_PIN_COUNT)
-        return world->inputs_read(world->context, first, count, board->cycles);
     for (i = 0; i < count; i++)
         if (epuck_board_pin_read(board, (epuck_pin)(first + i)))
             levels = (uint16_t)(levels | (1u << i));
     return levels;
+}
+
+uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count)
+{
+    const host_world *world = board->world;
+
+    if (world->inputs_read && (uint16_t)first >= EPUCK_PIN_FIRST_INPUT &&
+        (uint16_t)first + count <= EPUCK_PIN_COUNT)
+        return world->inputs_read(world->context, first, count, board->cycles);
+    return pins_read_one_by_one(board, first, count);
 }
 
 bool epuck_board_pin_watch_falling_edge(hal_board *board,

@@ -168,6 +168,17 @@ uint16_t world_adc_read(void *context, uint8_t channel, uint64_t cycle)
     return HOST_FLAT_OTHER_INPUT;
 }
 
+// Apart from world_adc_read_channels, so that a silent arena's microphones
+// cost no saving of the registers this loop needs.
+[[gnu::noinline]] void adc_read_one_by_one(void *context,
+                                           uint16_t channel_mask,
+                                           uint64_t cycle,
+                                           uint16_t *values)
+{
+    for (unsigned count = 0; channel_mask != 0; channel_mask &= uint16_t(channel_mask - 1))
+        values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
+}
+
 void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycle, uint16_t *values)
 {
     RobotState &state = state_of(context);
@@ -177,8 +188,7 @@ void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycl
         std::fill(values, values + microphone_count, uint16_t(HOST_FLAT_MICROPHONE));
         return;
     }
-    for (unsigned count = 0; channel_mask != 0; channel_mask &= uint16_t(channel_mask - 1))
-        values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
+    adc_read_one_by_one(context, channel_mask, cycle, values);
 }
 
 bool world_adc_channels_steady(void *context, uint16_t channel_mask)
@@ -205,17 +215,27 @@ bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
     }
 }
 
+// Apart from world_inputs_read, so that the selector's bits cost no saving
+// of the registers this loop needs.
+[[gnu::noinline]] uint16_t inputs_read_one_by_one(void *context,
+                                                  epuck_pin first,
+                                                  uint8_t count,
+                                                  uint64_t cycle)
+{
+    uint16_t levels = 0;
+    for (uint8_t i = 0; i < count; i++)
+        if (world_pin_read(context, epuck_pin(first + i), cycle))
+            levels |= uint16_t(1u << i);
+    return levels;
+}
+
 uint16_t world_inputs_read(void *context, epuck_pin first, uint8_t count, uint64_t cycle)
 {
     // The selector's bits, which the firmware reads every millisecond, at
     // once.
     if (first == EPUCK_PIN_SELECTOR_0 && count == selector_bits)
         return state_of(context).selector & (selector_positions - 1u);
-    uint16_t levels = 0;
-    for (uint8_t i = 0; i < count; i++)
-        if (world_pin_read(context, epuck_pin(first + i), cycle))
-            levels |= uint16_t(1u << i);
-    return levels;
+    return inputs_read_one_by_one(context, first, count, cycle);
 }
 
 uint64_t world_next_input_change(void *context, uint64_t after_cycle)
