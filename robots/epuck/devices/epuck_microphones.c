@@ -55,28 +55,6 @@ static void record(epuck_microphones *microphones, const uint16_t *values, bool 
     }
 }
 
-// `readings` times the same values at the end of the recording under way,
-// which they do not overfill.
-static void continue_recording(epuck_microphones *microphones,
-                               const uint16_t *values,
-                               uint16_t readings)
-{
-    uint16_t n;
-    uint8_t i;
-
-    microphones->until_next =
-      microphones->until_next > readings ? (uint16_t)(microphones->until_next - readings) : 0u;
-    for (n = 0; n < readings; n++) {
-        for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
-            microphones->recording[i][microphones->recorded] = values[i];
-        microphones->recorded++;
-    }
-    if (microphones->recorded == EPUCK_MICROPHONE_RECORD_SAMPLES) {
-        microphones->recording_now = false;
-        microphones->recording_full = true;
-    }
-}
-
 static void widen_window(epuck_microphones *microphones, const uint16_t *values)
 {
     uint8_t i;
@@ -129,13 +107,6 @@ void epuck_microphones_sampled_run(epuck_microphones *microphones,
                 take = left;
             microphones->until_next =
               microphones->until_next > take ? (uint16_t)(microphones->until_next - take) : 0u;
-        } else if (microphones->recording_now && follows_previous) {
-            // Readings that go on with the recording under way, up to its
-            // end: what record() does for each, 32 at once.
-            take = (uint16_t)(EPUCK_MICROPHONE_RECORD_SAMPLES - microphones->recorded);
-            if (take > left)
-                take = left;
-            continue_recording(microphones, values, take);
         } else {
             record(microphones, values, follows_previous);
             take = 1;
