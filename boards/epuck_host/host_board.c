@@ -20,6 +20,7 @@ void host_board_init(hal_board *board,
     board->world = host_world_flat();
     board->power_cut_at = HOST_NO_POWER_CUT;
     board->inputs_watched_at = board->configuration_changes - 1u;
+    board->first_timer_at = board->configuration_changes - 1u;
     for (i = 0; i < HOST_EEPROM_WORDS; i++)
         board->eeprom[i] = HOST_EEPROM_ERASED;
     for (i = 0; i < HOST_FLASH_WORDS; i++)
@@ -42,10 +43,55 @@ uint64_t host_board_cycles(const hal_board *board)
     return board->cycles;
 }
 
-// Defined in host_peripherals.c: runs the ADC scan due now, and with it the
-// later scans due up to `until` that the firmware takes at once (the
-// board's time is then the last one's).
-void host_board_run_adc_scans(hal_board *board, uint64_t until);
+// The values of the scanned channels at the board's time, into `values`;
+// returns how many.
+static uint8_t read_scan(hal_board *board, uint16_t *values)
+{
+    const host_world *world = board->world;
+    uint8_t count = 0;
+    uint8_t channel;
+    uint16_t mask;
+
+    if (world->adc_read_channels) {
+        world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
+        count = board->adc_scan_channels;
+    } else {
+        // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
+        for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
+            channel = (uint8_t)__builtin_ctz(mask);
+            values[count++] = world->adc_read(world->context, channel, board->cycles);
+        }
+    }
+    return count;
+}
+
+// Runs the ADC scan due now, and with it the later scans due up to `until`
+// that the firmware takes at once (the board's time is then the last
+// one's). Here rather than beside the other peripherals: the scheduler
+// calls it for most of its events, so that it inlines.
+static void run_adc_scans(hal_board *board, uint64_t until)
+{
+    const host_world *world = board->world;
+    uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
+    uint8_t count = read_scan(board, values);
+    uint64_t due = (until - board->adc_next_due) / HOST_ADC_SCAN_PERIOD_CYCLES + 1u;
+    uint16_t taken;
+
+    if (due > 1u && board->adc_scan_run_callback && world->adc_channels_steady &&
+        world->adc_channels_steady(world->context, board->adc_scan_mask)) {
+        // The scans due up to `until` all read what this one reads.
+        taken = board->adc_scan_run_callback(
+          board->adc_scan_context, values, count, (uint16_t)(due < UINT16_MAX ? due : UINT16_MAX));
+        if (taken < 1u)
+            taken = 1u;
+        board->cycles = board->adc_next_due + (uint64_t)(taken - 1u) * HOST_ADC_SCAN_PERIOD_CYCLES;
+        board->adc_next_due = board->cycles + HOST_ADC_SCAN_PERIOD_CYCLES;
+        return;
+    }
+    board->adc_next_due += HOST_ADC_SCAN_PERIOD_CYCLES;
+    if (board->adc_scan_callback)
+        board->adc_scan_callback(board->adc_scan_context, values, count);
+}
 
 static bool any_input_watched(const hal_board *board)
 {
@@ -62,12 +108,32 @@ static bool any_input_watched(const hal_board *board)
 #define EVENT_NONE         (-1)
 #define EVENT_INPUT_CHANGE EPUCK_TIMER_COUNT
 
+// The running timer due first (the first of a tie), into the board's
+// first_timer and first_timer_due.
+static void find_first_timer(hal_board *board)
+{
+    int16_t chosen = EVENT_NONE;
+    uint64_t due = 0;
+    int16_t i;
+
+    for (i = 0; i < EPUCK_TIMER_COUNT; i++) {
+        const host_periodic *timer = &board->timers[i];
+        if (timer->running && (chosen < 0 || timer->next_due < due)) {
+            chosen = i;
+            due = timer->next_due;
+        }
+    }
+    board->first_timer = chosen;
+    board->first_timer_due = due;
+    board->first_timer_at = board->configuration_changes;
+}
+
 // The earliest timer or input change at or before `until` (EVENT_NONE,
 // EVENT_INPUT_CHANGE, else a timer), its cycle in `due`. `*input_change`,
 // when `*input_known`, is the world's answer to an earlier question: it
 // holds until the clock reaches it (host_world.h), then the world is asked
 // again.
-static int16_t next_timer_or_input(const hal_board *board,
+static int16_t next_timer_or_input(hal_board *board,
                                    uint64_t until,
                                    bool inputs_watched,
                                    uint64_t *due,
@@ -75,14 +141,12 @@ static int16_t next_timer_or_input(const hal_board *board,
                                    bool *input_known)
 {
     int16_t chosen = EVENT_NONE;
-    int16_t i;
 
-    for (i = 0; i < EPUCK_TIMER_COUNT; i++) {
-        const host_periodic *timer = &board->timers[i];
-        if (timer->running && timer->next_due <= until && (chosen < 0 || timer->next_due < *due)) {
-            chosen = i;
-            *due = timer->next_due;
-        }
+    if (board->first_timer_at != board->configuration_changes)
+        find_first_timer(board);
+    if (board->first_timer >= 0 && board->first_timer_due <= until) {
+        chosen = board->first_timer;
+        *due = board->first_timer_due;
     }
     if (inputs_watched) {
         if (!*input_known || *input_change <= board->cycles) {
@@ -135,7 +199,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         // peripheral ends the row, so that the next event is chosen again.
         while (board->adc_scan_mask != 0 && board->adc_next_due <= scans_until) {
             board->cycles = board->adc_next_due;
-            host_board_run_adc_scans(board, run_until);
+            run_adc_scans(board, run_until);
             if (board->configuration_changes != changes)
                 break;
         }
@@ -149,8 +213,10 @@ void host_board_advance(hal_board *board, uint64_t cycles)
             continue;
         // The time goes back to the timer's when a run of scans went past it.
         board->cycles = due;
-        // Firmware code other than the scan's ran: ask the world again.
-        input_known = false;
+        // Firmware code other than the scan's ran: ask the world again,
+        // unless its answers do not depend on the firmware.
+        if (!board->world->input_changes_fixed)
+            input_known = false;
         if (event == EVENT_INPUT_CHANGE) {
             for (pin = EPUCK_PIN_FIRST_INPUT; pin < EPUCK_PIN_COUNT; pin++)
                 if (board->edge_callback[pin])
@@ -158,6 +224,7 @@ void host_board_advance(hal_board *board, uint64_t cycles)
         } else {
             host_periodic *timer = &board->timers[event];
             timer->next_due += timer->period;
+            find_first_timer(board);
             if (timer->callback)
                 timer->callback(timer->context);
         }
@@ -218,13 +285,14 @@ bool host_board_link_deliver(hal_board *board, const uint8_t *bytes, uint16_t co
     return true;
 }
 
-uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
+// Apart from hal_link_receive, so that the main loop's look at an empty
+// ring (every millisecond) saves no registers for the copy.
+__attribute__((noinline)) static uint16_t take_received(hal_board *board,
+                                                        uint8_t *bytes,
+                                                        uint16_t count)
 {
-    uint16_t count = capacity < board->receive_count ? capacity : board->receive_count;
     uint16_t first = (uint16_t)(HAL_LINK_RECEIVE_CAPACITY - board->receive_start);
 
-    if (count == 0)
-        return 0;
     // Out of the ring in at most two pieces, as they went in.
     if (first > count)
         first = count;
@@ -234,6 +302,15 @@ uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
     board->receive_start = (uint16_t)((board->receive_start + count) % HAL_LINK_RECEIVE_CAPACITY);
     board->receive_count = (uint16_t)(board->receive_count - count);
     return count;
+}
+
+uint16_t hal_link_receive(hal_board *board, uint8_t *bytes, uint16_t capacity)
+{
+    uint16_t count = capacity < board->receive_count ? capacity : board->receive_count;
+
+    if (count == 0)
+        return 0;
+    return take_received(board, bytes, count);
 }
 
 uint16_t hal_link_send(hal_board *board, const uint8_t *bytes, uint16_t count)

@@ -28,6 +28,9 @@
 // No fault injection planned.
 #define HOST_NO_POWER_CUT (-1L)
 
+// Cycles from one ADC scan to the next.
+#define HOST_ADC_SCAN_PERIOD_CYCLES (HOST_CYCLES_PER_SECOND / EPUCK_ADC_SCAN_RATE_HZ)
+
 typedef struct host_periodic {
     epuck_callback callback;
     void *context;
@@ -75,6 +78,12 @@ struct hal_board {
     // configuration_changes == inputs_watched_at.
     uint32_t inputs_watched_at;
     bool inputs_watched;
+    // The running timer due first (-1: none) and its cycle, as worked out
+    // at configuration_changes == first_timer_at: the scheduler looks for
+    // it again only when a timer fired or a peripheral started or stopped.
+    uint32_t first_timer_at;
+    int16_t first_timer;
+    uint64_t first_timer_due;
 
     uint16_t eeprom[HOST_EEPROM_WORDS];
     uint32_t flash[HOST_FLASH_WORDS];

@@ -4,8 +4,6 @@
 
 #include "host_board.h"
 
-#define SCAN_PERIOD_CYCLES (HOST_CYCLES_PER_SECOND / EPUCK_ADC_SCAN_RATE_HZ)
-
 uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
 {
     if (channel >= EPUCK_ADC_CHANNEL_COUNT || board->adc_scan_mask != 0)
@@ -15,13 +13,18 @@ uint16_t epuck_board_adc_read(hal_board *board, uint8_t channel)
 
 static uint8_t scan_channel_count(uint16_t mask)
 {
-    // The sequencer selects a scan's channels a few hundred times a second.
-    return (uint8_t)__builtin_popcount(mask);
+    // The sequencer selects a scan's channels a thousand times a second:
+    // without a population count instruction in the host's baseline,
+    // __builtin_popcount is a call into libgcc. Bits counted in pairs,
+    // nibbles, then bytes.
+    uint16_t bits = (uint16_t)(mask - ((mask >> 1) & 0x5555u));
+    bits = (uint16_t)((bits & 0x3333u) + ((bits >> 2) & 0x3333u));
+    bits = (uint16_t)((bits + (bits >> 4)) & 0x0f0fu);
+    return (uint8_t)((bits + (bits >> 8)) & 0x1fu);
 }
 
-static bool scan_mask_supported(uint16_t mask)
+static bool scan_count_supported(uint8_t count)
 {
-    uint8_t count = scan_channel_count(mask);
     return count >= EPUCK_ADC_SCAN_MIN_CHANNELS && count <= EPUCK_ADC_SCAN_MAX_CHANNELS;
 }
 
@@ -30,23 +33,27 @@ bool epuck_board_adc_scan_start(hal_board *board,
                                 epuck_adc_scan_callback callback,
                                 void *context)
 {
-    if (!scan_mask_supported(channel_mask))
+    uint8_t count = scan_channel_count(channel_mask);
+
+    if (!scan_count_supported(count))
         return false;
     board->adc_scan_callback = callback;
     board->adc_scan_run_callback = 0;
     board->adc_scan_context = context;
     board->adc_scan_mask = channel_mask;
-    board->adc_scan_channels = scan_channel_count(channel_mask);
-    board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
+    board->adc_scan_channels = count;
+    board->adc_next_due = board->cycles + HOST_ADC_SCAN_PERIOD_CYCLES;
     return true;
 }
 
 bool epuck_board_adc_scan_select(hal_board *board, uint16_t channel_mask)
 {
-    if (board->adc_scan_mask == 0 || !scan_mask_supported(channel_mask))
+    uint8_t count = scan_channel_count(channel_mask);
+
+    if (board->adc_scan_mask == 0 || !scan_count_supported(count))
         return false;
     board->adc_scan_mask = channel_mask;
-    board->adc_scan_channels = scan_channel_count(channel_mask);
+    board->adc_scan_channels = count;
     return true;
 }
 
@@ -60,54 +67,6 @@ void epuck_board_adc_scan_stop(hal_board *board)
 void epuck_board_adc_scan_runs(hal_board *board, epuck_adc_scan_run_callback callback)
 {
     board->adc_scan_run_callback = callback;
-}
-
-// The values of the scanned channels at the board's time, into `values`;
-// returns how many.
-static uint8_t read_scan(hal_board *board, uint16_t *values)
-{
-    const host_world *world = board->world;
-    uint8_t count = 0;
-    uint8_t channel;
-    uint16_t mask;
-
-    if (world->adc_read_channels) {
-        world->adc_read_channels(world->context, board->adc_scan_mask, board->cycles, values);
-        count = board->adc_scan_channels;
-    } else {
-        // Only the mask's channels, lowest first: a scan takes 2 to 6 of 16.
-        for (mask = board->adc_scan_mask; mask != 0; mask = (uint16_t)(mask & (mask - 1u))) {
-            channel = (uint8_t)__builtin_ctz(mask);
-            values[count++] = world->adc_read(world->context, channel, board->cycles);
-        }
-    }
-    return count;
-}
-
-void host_board_run_adc_scans(hal_board *board, uint64_t until);
-
-void host_board_run_adc_scans(hal_board *board, uint64_t until)
-{
-    const host_world *world = board->world;
-    uint16_t values[EPUCK_ADC_SCAN_MAX_CHANNELS];
-    uint8_t count = read_scan(board, values);
-    uint64_t due = (until - board->adc_next_due) / SCAN_PERIOD_CYCLES + 1u;
-    uint16_t taken;
-
-    if (due > 1u && board->adc_scan_run_callback && world->adc_channels_steady &&
-        world->adc_channels_steady(world->context, board->adc_scan_mask)) {
-        // The scans due up to `until` all read what this one reads.
-        taken = board->adc_scan_run_callback(
-          board->adc_scan_context, values, count, (uint16_t)(due < UINT16_MAX ? due : UINT16_MAX));
-        if (taken < 1u)
-            taken = 1u;
-        board->cycles = board->adc_next_due + (uint64_t)(taken - 1u) * SCAN_PERIOD_CYCLES;
-        board->adc_next_due = board->cycles + SCAN_PERIOD_CYCLES;
-        return;
-    }
-    board->adc_next_due += SCAN_PERIOD_CYCLES;
-    if (board->adc_scan_callback)
-        board->adc_scan_callback(board->adc_scan_context, values, count);
 }
 
 void epuck_board_pin_write(hal_board *board, epuck_pin pin, bool high)
@@ -127,19 +86,29 @@ bool epuck_board_pin_read(hal_board *board, epuck_pin pin)
     return board->world->pin_read(board->world->context, pin, board->cycles);
 }
 
-uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count)
+// Apart, so that the world's answer at once (every millisecond) costs no
+// saving of the registers this loop needs.
+__attribute__((noinline)) static uint16_t pins_read_one_by_one(hal_board *board,
+                                                               epuck_pin first,
+                                                               uint8_t count)
 {
-    const host_world *world = board->world;
     uint16_t levels = 0;
     uint8_t i;
 
-    if (world->inputs_read && (uint16_t)first >= EPUCK_PIN_FIRST_INPUT &&
-        (uint16_t)first + count <= EPUCK_PIN_COUNT)
-        return world->inputs_read(world->context, first, count, board->cycles);
     for (i = 0; i < count; i++)
         if (epuck_board_pin_read(board, (epuck_pin)(first + i)))
             levels = (uint16_t)(levels | (1u << i));
     return levels;
+}
+
+uint16_t epuck_board_pins_read(hal_board *board, epuck_pin first, uint8_t count)
+{
+    const host_world *world = board->world;
+
+    if (world->inputs_read && (uint16_t)first >= EPUCK_PIN_FIRST_INPUT &&
+        (uint16_t)first + count <= EPUCK_PIN_COUNT)
+        return world->inputs_read(world->context, first, count, board->cycles);
+    return pins_read_one_by_one(board, first, count);
 }
 
 bool epuck_board_pin_watch_falling_edge(hal_board *board,

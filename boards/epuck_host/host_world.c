@@ -91,6 +91,7 @@ static const host_world flat_world = {
     flat_adc_channels_steady,
     0,
     0,
+    false,
 };
 
 const host_world *host_world_flat(void)

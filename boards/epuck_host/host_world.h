@@ -65,6 +65,12 @@ typedef struct host_world {
     // selector's bits, read every millisecond). NULL: the board calls
     // pin_read for each.
     uint16_t (*inputs_read)(void *context, epuck_pin first, uint8_t count, uint64_t cycle);
+    // Whether next_input_change's answers hold until the cycle they give
+    // whatever the firmware does meanwhile (the arena's remote, whose
+    // frames are sent between the board's advances): the board then asks
+    // again once that cycle has come or a peripheral started or stopped,
+    // not after every other event (a motor's step, a thousand a second).
+    bool input_changes_fixed;
 } host_world;
 
 #define HOST_NO_INPUT_CHANGE UINT64_MAX

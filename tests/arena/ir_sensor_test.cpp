@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -362,4 +363,55 @@ TEST(IrSensor, SeesSquareWallsAsEnkiDoesUpToRounding)
     EXPECT_EQ(differences, 0u);
     EXPECT_GT(rays_seeing, 1500u);
     EXPECT_GT(inside_wall, 40u);
+}
+
+// The noise's generator draws what glibc's rand() draws after the same
+// srand, whatever the seed (0 stands for 1, seeds past INT32_MAX wrap).
+TEST(IrNoise, DrawsAsRandDoes)
+{
+    for (uint32_t seed : { 0u, 1u, 2u, 11u, 12345u, 2147483647u, 2147483648u, 4294967295u }) {
+        std::srand(seed);
+        aseba::arena::IrNoise noise(seed);
+        for (int draw = 0; draw < 10000; draw++)
+            ASSERT_EQ(noise.next(), std::rand()) << "seed " << seed << ", draw " << draw;
+    }
+    std::srand(1);
+    aseba::arena::IrNoise unseeded;
+    for (int draw = 0; draw < 1000; draw++)
+        ASSERT_EQ(unseeded.next(), std::rand());
+}
+
+// A sensor's final value and distance are Debian's IRSensor::finalize's,
+// bit for bit, from the same rays and the same seed: objects near and far,
+// none, and one touching the sensor (the value clamped to the maximum).
+TEST(IrSensor, FinalizesAsEnkiDoes)
+{
+    Enki::World world(200, 200);
+    world.takeObjectOwnership = false;
+    EnkiEpuck robot(0, 0.5, false);
+    robot.pos = Enki::Point(100, 100);
+    FreshIRSensor sensor = make_sensor<FreshIRSensor>(&robot);
+    Enki::PhysicalObject other;
+    other.setCylindric(3.7, 4.7, 152);
+    std::mt19937_64 random(13);
+    std::uniform_real_distribution<double> unit(0, 1);
+    unsigned seeing = 0;
+    for (int trial = 0; trial < 2000; trial++) {
+        robot.angle = -pi + 2 * pi * unit(random);
+        double bearing = robot.angle + sensor_heading + 0.6 * (unit(random) - 0.5);
+        double distance = trial % 10 == 0 ? 0 : 20 * unit(random);
+        other.pos = robot.pos + Enki::Vector(std::cos(bearing), std::sin(bearing)) * distance;
+        sensor.init(step_seconds, &world);
+        sensor.objectStep(step_seconds, &world, &other);
+        uint32_t seed = uint32_t(trial * 7919);
+        std::srand(seed);
+        sensor.Enki::IRSensor::finalize(step_seconds, &world);
+        double enki_value = sensor.getValue(), enki_distance = sensor.getDist();
+        aseba::arena::seed_ir_noise(seed);
+        sensor.finalize(step_seconds, &world);
+        ASSERT_TRUE(same_bits(sensor.getValue(), enki_value)) << "trial " << trial;
+        ASSERT_TRUE(same_bits(sensor.getDist(), enki_distance)) << "trial " << trial;
+        seeing += enki_value > 100;
+    }
+    EXPECT_GT(seeing, 200u);
 }

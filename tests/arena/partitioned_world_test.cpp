@@ -47,7 +47,7 @@ CrowdRun run_crowd(Enki::World &world, bool camera = false)
 {
     world.takeObjectOwnership = false;
     world.setRandomSeed(11);
-    std::srand(11);
+    aseba::arena::seed_ir_noise(11);
     std::allocator<EnkiEpuck> robot_allocator;
     EnkiEpuck *robots = robot_allocator.allocate(robot_count);
     std::allocator<Enki::PhysicalObject> obstacle_allocator;

@@ -107,6 +107,8 @@ struct EnkiWorld::RobotState {
     // Enki step (+ forward).
     int phase[2] = { 0, 0 };
     int32_t steps[2] = { 0, 0 };
+    // Per motor: its phase lines as driven (bit 3 = A .. bit 0 = D).
+    uint8_t lines[2] = { 0, 0 };
     double wheel_speed[2] = { 0, 0 };
     std::array<uint8_t, 256> camera_registers{};
     // The row last rendered, for the step it was rendered in.
@@ -166,6 +168,17 @@ uint16_t world_adc_read(void *context, uint8_t channel, uint64_t cycle)
     return HOST_FLAT_OTHER_INPUT;
 }
 
+// Apart from world_adc_read_channels, so that a silent arena's microphones
+// cost no saving of the registers this loop needs.
+[[gnu::noinline]] void adc_read_one_by_one(void *context,
+                                           uint16_t channel_mask,
+                                           uint64_t cycle,
+                                           uint16_t *values)
+{
+    for (unsigned count = 0; channel_mask != 0; channel_mask &= uint16_t(channel_mask - 1))
+        values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
+}
+
 void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycle, uint16_t *values)
 {
     RobotState &state = state_of(context);
@@ -175,8 +188,7 @@ void world_adc_read_channels(void *context, uint16_t channel_mask, uint64_t cycl
         std::fill(values, values + microphone_count, uint16_t(HOST_FLAT_MICROPHONE));
         return;
     }
-    for (unsigned count = 0; channel_mask != 0; channel_mask &= uint16_t(channel_mask - 1))
-        values[count++] = world_adc_read(context, uint8_t(__builtin_ctz(channel_mask)), cycle);
+    adc_read_one_by_one(context, channel_mask, cycle, values);
 }
 
 bool world_adc_channels_steady(void *context, uint16_t channel_mask)
@@ -203,17 +215,27 @@ bool world_pin_read(void *context, epuck_pin pin, uint64_t cycle)
     }
 }
 
+// Apart from world_inputs_read, so that the selector's bits cost no saving
+// of the registers this loop needs.
+[[gnu::noinline]] uint16_t inputs_read_one_by_one(void *context,
+                                                  epuck_pin first,
+                                                  uint8_t count,
+                                                  uint64_t cycle)
+{
+    uint16_t levels = 0;
+    for (uint8_t i = 0; i < count; i++)
+        if (world_pin_read(context, epuck_pin(first + i), cycle))
+            levels |= uint16_t(1u << i);
+    return levels;
+}
+
 uint16_t world_inputs_read(void *context, epuck_pin first, uint8_t count, uint64_t cycle)
 {
     // The selector's bits, which the firmware reads every millisecond, at
     // once.
     if (first == EPUCK_PIN_SELECTOR_0 && count == selector_bits)
         return state_of(context).selector & (selector_positions - 1u);
-    uint16_t levels = 0;
-    for (uint8_t i = 0; i < count; i++)
-        if (world_pin_read(context, epuck_pin(first + i), cycle))
-            levels |= uint16_t(1u << i);
-    return levels;
+    return inputs_read_one_by_one(context, first, count, cycle);
 }
 
 uint64_t world_next_input_change(void *context, uint64_t after_cycle)
@@ -247,15 +269,14 @@ constexpr std::array<int8_t, 16> phase_of_pattern = [] {
 
 // A motor's phase lines changed: when they show the next pattern of the
 // sequence, or the one before, the motor made a step.
-void phase_written(RobotState &state, Motor motor, epuck_pin first)
+void phase_written(RobotState &state, Motor motor)
 {
-    const unsigned pattern =
-      unsigned(state.output[first]) << 3 | unsigned(state.output[first + 1]) << 2 |
-      unsigned(state.output[first + 2]) << 1 | unsigned(state.output[first + 3]);
-    const int index = phase_of_pattern[pattern];
+    const int index = phase_of_pattern[state.lines[motor]];
     if (index < 0)
         return;
-    int change = (index - state.phase[motor] + phase_count) % phase_count;
+    // Indices 0..3: the change forward, modulo 4.
+    static_assert(phase_count == 4);
+    int change = (index - state.phase[motor]) & (phase_count - 1);
     state.phase[motor] = index;
     // The motors are mirror-mounted: forward steps the left motor's phase
     // index down and the right motor's up (§3.6). A jump of two is no step.
@@ -271,10 +292,18 @@ void world_pin_written(void *context, epuck_pin pin, bool high, uint64_t)
     if (state.output[pin] == high)
         return;
     state.output[pin] = high;
-    if (pin >= EPUCK_PIN_MOTOR_LEFT_A && pin <= EPUCK_PIN_MOTOR_LEFT_D)
-        phase_written(state, left_motor, EPUCK_PIN_MOTOR_LEFT_A);
-    else if (pin >= EPUCK_PIN_MOTOR_RIGHT_A && pin <= EPUCK_PIN_MOTOR_RIGHT_D)
-        phase_written(state, right_motor, EPUCK_PIN_MOTOR_RIGHT_A);
+    static_assert(EPUCK_PIN_MOTOR_LEFT_D == EPUCK_PIN_MOTOR_LEFT_A + phase_count - 1 &&
+                  EPUCK_PIN_MOTOR_RIGHT_D == EPUCK_PIN_MOTOR_RIGHT_A + phase_count - 1);
+    unsigned line = unsigned(pin) - EPUCK_PIN_MOTOR_LEFT_A;
+    Motor motor = left_motor;
+    if (line >= phase_count) {
+        line = unsigned(pin) - EPUCK_PIN_MOTOR_RIGHT_A;
+        motor = right_motor;
+        if (line >= phase_count)
+            return;
+    }
+    state.lines[motor] ^= uint8_t(8u >> line);
+    phase_written(state, motor);
 }
 
 bool world_i2c_write(void *context,
@@ -426,6 +455,41 @@ void FreshIRSensor::start_step(const Enki::Matrix22 &owner_rotation)
         absRayAngles[i] = absOrientation + rayAngles[i];
         world_ray_directions_[i] = owner_rotation * ray_directions_[i];
     }
+}
+
+namespace
+{
+// Constant-initialised: no guard at each use.
+constinit thread_local IrNoise thread_ir_noise;
+} // namespace
+
+IrNoise &ir_noise()
+{
+    return thread_ir_noise;
+}
+
+void seed_ir_noise(uint32_t seed)
+{
+    thread_ir_noise.reseed(seed);
+}
+
+void FreshIRSensor::finalize(double, Enki::World *)
+{
+    // Debian's IRSensor::finalize operation for operation (its machine
+    // code: the three rays' sum, then Enki's gaussianRand(sum, noiseSd),
+    // clamped to 0..m), with rand() from ir_noise().
+    IrNoise &noise = thread_ir_noise;
+    const double sum = rayValues[0] + rayValues[1] + rayValues[2];
+    double x, y, squared;
+    do {
+        x = double(noise.next()) / IrNoise::maximum * 2 - 1;
+        y = double(noise.next()) / IrNoise::maximum * 2 - 1;
+        squared = x * x + y * y;
+    } while (squared > 1.0 || squared == 0);
+    double value = noiseSd * y * std::sqrt(-2.0 * std::log(squared) / squared) + sum;
+    value = value < m ? value : m;
+    finalValue = value > 0 ? value : 0;
+    finalDist = inverseResponseFunction(finalValue);
 }
 
 void FreshIRSensor::objectStep(double dt, Enki::World *world, Enki::PhysicalObject *object)
@@ -675,7 +739,7 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
       std::make_unique<PartitionedWorld>(arena.width, arena.height, to_enki(arena.wall_color));
     world_->takeObjectOwnership = false;
     world_->setRandomSeed(seed);
-    std::srand(seed); // Enki's IR noise draws from rand()
+    seed_ir_noise(seed); // where Enki's IR sensors draw from rand()
 
     size_t robots_bytes = aligned(arena.robots.size() * sizeof(EnkiEpuck));
     size_t total = robots_bytes + arena.obstacles.size() * sizeof(Enki::PhysicalObject);
@@ -710,7 +774,8 @@ EnkiWorld::EnkiWorld(const Arena &arena, uint32_t seed)
                          world_adc_read_channels,
                          world_adc_channels_steady,
                          world_camera_every_second_pixel,
-                         world_inputs_read };
+                         world_inputs_read,
+                         true };
         state->selector = place.selector;
         state->battery = Battery(arena.battery, place.battery_charge);
         place_microphones(*state);

@@ -42,6 +42,65 @@ extern "C" {
 namespace aseba::arena
 {
 
+// The IR sensors' noise: what glibc's rand() draws after srand(seed) (its
+// additive feedback generator of degree 31 and separation 3, seeded as
+// glibc seeds it), for the sensors' noise that Debian's Enki draws from
+// rand(), without the lock and the two calls of each of glibc's draws. One
+// a thread, seeded by seed_ir_noise: the worlds of a thread share it as
+// those of a process shared rand(), and the noise is drawn on the thread
+// that steps the world (partitioned_world.hpp).
+class IrNoise
+{
+  public:
+    static constexpr int32_t maximum = 2147483647; // glibc's RAND_MAX
+
+    constexpr explicit IrNoise(uint32_t seed = 1)
+    {
+        reseed(seed);
+    }
+    // srand(seed).
+    constexpr void reseed(uint32_t seed)
+    {
+        // glibc's srandom_r: 16807 times the previous word modulo 2^31 - 1
+        // (Schrage's method), then 310 draws thrown away.
+        int32_t word = int32_t(seed == 0 ? 1 : seed);
+        state_[0] = word;
+        for (unsigned i = 1; i < degree; i++) {
+            long hi = word / 127773;
+            long lo = word % 127773;
+            word = int32_t(16807 * lo - 2836 * hi);
+            if (word < 0)
+                word += 2147483647;
+            state_[i] = word;
+        }
+        front_ = separation;
+        rear_ = 0;
+        for (unsigned i = 0; i < 10 * degree; i++)
+            next();
+    }
+    // rand(): 0 to maximum.
+    constexpr int32_t next()
+    {
+        uint32_t sum = uint32_t(state_[front_]) + uint32_t(state_[rear_]);
+        state_[front_] = int32_t(sum);
+        front_ = front_ + 1 == degree ? 0 : front_ + 1;
+        rear_ = rear_ + 1 == degree ? 0 : rear_ + 1;
+        return int32_t(sum >> 1);
+    }
+
+  private:
+    static constexpr unsigned degree = 31;
+    static constexpr unsigned separation = 3;
+    std::array<int32_t, degree> state_{};
+    unsigned front_ = separation;
+    unsigned rear_ = 0;
+};
+
+// This thread's IR noise; seed_ir_noise(seed) where Enki's users call
+// srand(seed).
+IrNoise &ir_noise();
+void seed_ir_noise(uint32_t seed);
+
 // Enki's IR sensor with its rays cleared at the start of every step, so
 // that a value falls back once the obstacle has gone. For a cylinder (a
 // robot, a post) it works out Enki's geometry without Enki's trigonometry
@@ -75,6 +134,8 @@ class FreshIRSensor : public Enki::IRSensor
              double radius,
              bool cylindric);
     void wallsStep(double dt, Enki::World *world) override;
+    // Debian's IRSensor::finalize, its noise drawn from ir_noise().
+    void finalize(double dt, Enki::World *world) override;
     // init() given the rotation of the owner's heading, shared by its sensors.
     void start_step(const Enki::Matrix22 &owner_rotation);
 

@@ -20,9 +20,9 @@
 // walls' pass write only a's own sensors (Enki's IR sensors and camera keep
 // their rays and pixels in themselves and draw no random number there), so
 // each object's calls, made in Enki's order on whichever thread, give the
-// same sensors whatever the thread count. What draws noise from Enki's
-// shared generators (the sensors' finalize, the wheels' controlStep) stays
-// on the calling thread, in Enki's order.
+// same sensors whatever the thread count. What draws noise from shared
+// generators (the sensors' finalize, the wheels' controlStep) stays on the
+// calling thread, in Enki's order.
 
 #pragma once
 

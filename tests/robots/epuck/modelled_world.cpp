@@ -95,7 +95,8 @@ uint8_t camera_byte(void *context, uint16_t row, uint16_t index, uint64_t)
 ModelledWorld::ModelledWorld()
 {
     table = { this,        adc_read,           pin_read, pin_written,     i2c_write, i2c_read,
-              camera_byte, input_change_after, nullptr,  channels_steady, nullptr,   nullptr };
+              camera_byte, input_change_after, nullptr,  channels_steady, nullptr,   nullptr,
+              false };
     input[EPUCK_PIN_REMOTE] = true; // idles high
     input[EPUCK_PIN_BATTERY_LOW] = true;
 }
