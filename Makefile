@@ -93,6 +93,14 @@ TEST_SANITIZE := $(SANITIZE) -fno-sanitize=vptr
 TEST_PRELUDE := $(BUILD)/host-sanitize/pch/test_prelude.hpp
 $(BUILD)/host-sanitize/obj/tests/%.o: host-sanitize_FLAGS = -O0 -g1 $(TEST_SANITIZE)
 $(BUILD)/host-sanitize/obj/tests/%.o: host-sanitize_CXXFLAGS = -include $(TEST_PRELUDE)
+# The tools whose tests wait on sockets, a broker and a browser rather than
+# on their code (the console, the client library, the IDE's and the MQTT
+# bridge's servers) are optimised for debugging instead: with the
+# sanitizers, -Og compiles their asio, websocketpp and JSON templates in a
+# third less time than -O1 (95 of 325 processor seconds here).
+SANITIZED_AT_OG := console client ide mqtt
+$(foreach t,$(SANITIZED_AT_OG),$(BUILD)/host-sanitize/obj/tools/$(t)/%.o): \
+    host-sanitize_FLAGS = -Og -g1 $(SANITIZE)
 # GCC takes the .gch beside the header named by -include when it was built
 # with the same options, and the header itself otherwise.
 $(TEST_PRELUDE).gch: tests/test_prelude.hpp | $(TEST_DEPS_STAMP)
