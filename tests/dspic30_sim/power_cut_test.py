@@ -37,7 +37,11 @@ from sim_node import (APPLICATION_IMAGE, BOOTLOADER_IMAGE, FACTORY_IMAGE, Node, 
 SPEED = ["--speed", "4"]
 # Where no bootloader waits on the console, as fast as the host can.
 FAST = ["--speed", "0"]
-OLD_PROGRAM, NEW_PROGRAM = "leftSpeed = 111\n", "leftSpeed = 222\n"
+# The store keeps a program's words up to its last non-zero one: the new
+# program (some 120 words) spans three of its blocks, so that cuts fall in
+# the erases and writes of a record of several rows.
+OLD_PROGRAM = "leftSpeed = 111\n"
+NEW_PROGRAM = "leftSpeed = 222\n" + "".join(f"rightSpeed = {i}\n" for i in range(60))
 
 
 def fresh_memory(folder, name, image):

@@ -8,8 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
+#include <vector>
 
 #include "tools/compiler/program_file.hpp"
 #include "tools/compiler/target_presets.hpp"
@@ -168,6 +170,33 @@ TEST_F(FirmwareImage, StoredProgramRunsAfterReboot)
     EXPECT_EQ(variable(timer_ticks_address), 0);
     run_seconds(1.0);
     EXPECT_NEAR(double(variable(timer_ticks_address)), 100.0, 2.0); // timer.period 10 ms
+}
+
+// WRITE_BYTECODE stores the program without the zeros that end the node's
+// bytecode array (a short program then takes one block of flash, not the
+// whole slot), and a reboot gives the array back whole, whatever the memory
+// held before.
+TEST_F(FirmwareImage, StoredProgramLeavesOutTheZerosThatEndIt)
+{
+    const std::vector<uint16_t> running(firmware->bytecode,
+                                        firmware->bytecode + FIRMWARE_BYTECODE_WORDS);
+    size_t length = running.size();
+    while (length > 1 && running[length - 1] == 0)
+        length--;
+    ASSERT_LT(length, running.size());
+    const uint8_t write_bytecode[] = { 0x02, 0x00, 0x00, 0x00, 0x0d, 0xa0, 0x06, 0x00 };
+    ASSERT_TRUE(host_board_link_deliver(board.get(), write_bytecode, sizeof write_bytecode));
+    run_seconds(0.05);
+
+    std::vector<uint16_t> stored(FIRMWARE_BYTECODE_WORDS);
+    uint16_t count = 0;
+    ASSERT_TRUE(store_load_bytecode(board.get(), stored.data(), FIRMWARE_BYTECODE_WORDS, &count));
+    EXPECT_EQ(count, length);
+
+    firmware = std::make_unique<firmware_state>();
+    std::fill(std::begin(firmware->bytecode), std::end(firmware->bytecode), uint16_t(0xFFFF));
+    boot();
+    EXPECT_TRUE(std::equal(running.begin(), running.end(), firmware->bytecode));
 }
 
 // Without a stored program the robot boots idle.
