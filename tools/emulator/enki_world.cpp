@@ -379,10 +379,21 @@ void world_camera_every_second_pixel(void *context,
     RobotState &state = state_of(context);
     Color colors[camera_row_pixels];
     state.world->camera_row(state.index, row, colors, 2);
+    // Neighbouring pixels mostly see the same floor, area or body: a pixel
+    // of the colour before it takes that pixel's bytes, not three roundings.
+    const Color *previous = nullptr;
     for (unsigned pixel = 0; pixel < pixels; pixel++) {
         uint8_t *pixel_bytes = bytes + 2 * pixel;
         if (2 * pixel < camera_row_pixels) {
-            rgb565_bytes(colors[2 * pixel], pixel_bytes);
+            const Color &color = colors[2 * pixel];
+            if (previous != nullptr && color.red == previous->red &&
+                color.green == previous->green && color.blue == previous->blue) {
+                pixel_bytes[0] = pixel_bytes[-2];
+                pixel_bytes[1] = pixel_bytes[-1];
+            } else {
+                rgb565_bytes(color, pixel_bytes);
+            }
+            previous = &color;
         } else {
             pixel_bytes[0] = 0;
             pixel_bytes[1] = 0;
