@@ -1176,6 +1176,24 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
     const bool floor_within_walls = lens.x - reach > wall_margin && lens.y - reach > wall_margin &&
                                     lens.x + reach < arena_.width - wall_margin &&
                                     lens.y + reach < arena_.height - wall_margin;
+    // A row's floor points lie within `reach` of the lens (the rays are unit
+    // vectors to about 1e-16): when no coloured area's square comes that near,
+    // every floor point is bare floor, as Arena::ground_color would find one
+    // by one (the margin is far wider than the rounding).
+    bool areas_within_reach = false;
+    for (const GroundArea &area : arena_.areas) {
+        const bool disc = area.shape == GroundArea::Shape::disc;
+        const double left = disc ? area.x - area.radius : area.x;
+        const double right = disc ? area.x + area.radius : area.x + area.width;
+        const double bottom = disc ? area.y - area.radius : area.y;
+        const double top = disc ? area.y + area.radius : area.y + area.height;
+        const double near_reach = reach + wall_margin;
+        if (lens.x + near_reach >= left && lens.x - near_reach <= right &&
+            lens.y + near_reach >= bottom && lens.y - near_reach <= top) {
+            areas_within_reach = true;
+            break;
+        }
+    }
     const PixelRays &rays = pixel_rays();
     for (unsigned pixel = 0; pixel < camera_row_pixels; pixel += pixel_step) {
         // The pixel's ray turned by the robot's heading.
@@ -1201,9 +1219,13 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
                 floor = false;
             }
         }
-        pixels[pixel] =
-          floor ? arena_.ground_color(lens.x + reach * direction.x, lens.y + reach * direction.y)
-                : color;
+        if (!floor)
+            pixels[pixel] = color;
+        else if (areas_within_reach)
+            pixels[pixel] =
+              arena_.ground_color(lens.x + reach * direction.x, lens.y + reach * direction.y);
+        else
+            pixels[pixel] = arena_.floor_color;
     }
 }
 
