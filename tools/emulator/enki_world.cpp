@@ -332,9 +332,11 @@ bool world_i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, 
     return true;
 }
 
-// std::lround of a level 0..63, without the library call (a row of pixels
-// takes 360 of them): the fraction of a non-negative double is exact, so
-// the comparison rounds halves up as lround does.
+// std::lround of a non-negative level below 2^32 (a colour's 0..63, a
+// proximity reading's 0..65535), without the library call (a row of pixels
+// takes 360 of them, the proximity sensors 800 a robot-second): the
+// fraction of a non-negative double is exact, so the comparison rounds
+// halves up as lround does.
 unsigned rounded_level(double level)
 {
     auto whole = unsigned(level);
@@ -728,7 +730,7 @@ uint16_t proximity_lit_reading(double enki_value, uint16_t ambient)
     // Enki's response was fitted to real e-puck readings (reflected light,
     // 0..3731): the lit reading is that much below the ambient one.
     double reflected = std::clamp(enki_value, 0.0, double(ambient));
-    return uint16_t(std::lround(double(ambient) - reflected));
+    return uint16_t(rounded_level(double(ambient) - reflected));
 }
 
 uint16_t accelerometer_reading(unsigned axis, double forward, double leftward)
