@@ -578,3 +578,27 @@ TEST(ArenaDeterminism, SameSeedSameRunWithSoundSelectorsRemoteAndBattery)
     EXPECT_EQ(robot1.battery[0], 0);
     EXPECT_NE(std::count(std::begin(robot1.mic_samples0), std::end(robot1.mic_samples0), 0), 32);
 }
+
+// The lit reading rounds as std::lround did: halves up, whatever the
+// ambient reading and Enki's value (clamped to 0..ambient).
+TEST(ArenaSensing, ProximityLitReadingRoundsAsLround)
+{
+    const uint16_t ambients[] = { 0, 1, 3731, 4095, 65535 };
+    const double values[] = {
+        -5,     0,    0.25, 0.5,  0.5000000000000001, 0.49999999999999994, 1.5, 2.5, 100.49, 100.5,
+        3730.5, 3731, 5000, 1e300
+    };
+    for (uint16_t ambient : ambients)
+        for (double value : values) {
+            const double reflected = std::clamp(value, 0.0, double(ambient));
+            EXPECT_EQ(proximity_lit_reading(value, ambient),
+                      uint16_t(std::lround(double(ambient) - reflected)))
+              << value << " under " << ambient;
+        }
+    for (int step = 0; step <= 8000; step++) {
+        const double value = step * 0.5 + (step % 3) * 1e-9;
+        EXPECT_EQ(proximity_lit_reading(value, 4095),
+                  uint16_t(std::lround(4095.0 - std::clamp(value, 0.0, 4095.0))))
+          << value;
+    }
+}

@@ -42,8 +42,9 @@ struct CrowdRun {
 
 // Runs the crowd in `world` (fresh, square, side x side); robots and
 // obstacles live in one block each, in order, as the arena keeps them.
-// With `camera`, Enki steps the robots' cameras too.
-CrowdRun run_crowd(Enki::World &world, bool camera = false)
+// With `camera`, Enki steps the robots' cameras too; `cylinder_radius` wider
+// than a cell puts the cylinder outside the grid.
+CrowdRun run_crowd(Enki::World &world, bool camera = false, double cylinder_radius = 6)
 {
     world.takeObjectOwnership = false;
     world.setRandomSeed(11);
@@ -66,7 +67,7 @@ CrowdRun run_crowd(Enki::World &world, bool camera = false)
     obstacles[0].angle = 0.3;
     world.addObject(&obstacles[0]);
     new (obstacles + 1) Enki::PhysicalObject;
-    obstacles[1].setCylindric(6, 10, -1);
+    obstacles[1].setCylindric(cylinder_radius, 10, -1);
     obstacles[1].pos = Enki::Point(100, 50);
     world.addObject(&obstacles[1]);
 
@@ -121,6 +122,20 @@ TEST(PartitionedWorld, StepsAsEnkiDoesBitForBit)
           << "robot " << i << " at " << got.robots[i].x << ", " << got.robots[i].y << ", Enki's at "
           << expected.robots[i].x << ", " << expected.robots[i].y;
     EXPECT_EQ(partitioned.margin_overruns(), 0u);
+}
+
+TEST(PartitionedWorld, StepsAsEnkiDoesWithAnObstacleWiderThanACell)
+{
+    Enki::World enki(side, side, Enki::Color::gray);
+    CrowdRun expected = run_crowd(enki, false, 30);
+    PartitionedWorld partitioned(side, side, Enki::Color::gray);
+    CrowdRun got = run_crowd(partitioned, false, 30);
+
+    EXPECT_EQ(got.collisions, expected.collisions);
+    ASSERT_EQ(got.robots.size(), expected.robots.size());
+    for (size_t i = 0; i < got.robots.size(); i++)
+        EXPECT_EQ(std::memcmp(&got.robots[i], &expected.robots[i], sizeof(RobotRecord)), 0)
+          << "robot " << i;
 }
 
 namespace

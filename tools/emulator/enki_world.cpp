@@ -332,9 +332,11 @@ bool world_i2c_read(void *context, uint8_t device, uint8_t reg, uint8_t *bytes, 
     return true;
 }
 
-// std::lround of a level 0..63, without the library call (a row of pixels
-// takes 360 of them): the fraction of a non-negative double is exact, so
-// the comparison rounds halves up as lround does.
+// std::lround of a non-negative level below 2^32 (a colour's 0..63, a
+// proximity reading's 0..65535), without the library call (a row of pixels
+// takes 360 of them, the proximity sensors 800 a robot-second): the
+// fraction of a non-negative double is exact, so the comparison rounds
+// halves up as lround does.
 unsigned rounded_level(double level)
 {
     auto whole = unsigned(level);
@@ -379,10 +381,21 @@ void world_camera_every_second_pixel(void *context,
     RobotState &state = state_of(context);
     Color colors[camera_row_pixels];
     state.world->camera_row(state.index, row, colors, 2);
+    // Neighbouring pixels mostly see the same floor, area or body: a pixel
+    // of the colour before it takes that pixel's bytes, not three roundings.
+    const Color *previous = nullptr;
     for (unsigned pixel = 0; pixel < pixels; pixel++) {
         uint8_t *pixel_bytes = bytes + 2 * pixel;
         if (2 * pixel < camera_row_pixels) {
-            rgb565_bytes(colors[2 * pixel], pixel_bytes);
+            const Color &color = colors[2 * pixel];
+            if (previous != nullptr && color.red == previous->red &&
+                color.green == previous->green && color.blue == previous->blue) {
+                pixel_bytes[0] = pixel_bytes[-2];
+                pixel_bytes[1] = pixel_bytes[-1];
+            } else {
+                rgb565_bytes(color, pixel_bytes);
+            }
+            previous = &color;
         } else {
             pixel_bytes[0] = 0;
             pixel_bytes[1] = 0;
@@ -717,7 +730,7 @@ uint16_t proximity_lit_reading(double enki_value, uint16_t ambient)
     // Enki's response was fitted to real e-puck readings (reflected light,
     // 0..3731): the lit reading is that much below the ambient one.
     double reflected = std::clamp(enki_value, 0.0, double(ambient));
-    return uint16_t(std::lround(double(ambient) - reflected));
+    return uint16_t(rounded_level(double(ambient) - reflected));
 }
 
 uint16_t accelerometer_reading(unsigned axis, double forward, double leftward)
@@ -1165,6 +1178,24 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
     const bool floor_within_walls = lens.x - reach > wall_margin && lens.y - reach > wall_margin &&
                                     lens.x + reach < arena_.width - wall_margin &&
                                     lens.y + reach < arena_.height - wall_margin;
+    // A row's floor points lie within `reach` of the lens (the rays are unit
+    // vectors to about 1e-16): when no coloured area's square comes that near,
+    // every floor point is bare floor, as Arena::ground_color would find one
+    // by one (the margin is far wider than the rounding).
+    bool areas_within_reach = false;
+    for (const GroundArea &area : arena_.areas) {
+        const bool disc = area.shape == GroundArea::Shape::disc;
+        const double left = disc ? area.x - area.radius : area.x;
+        const double right = disc ? area.x + area.radius : area.x + area.width;
+        const double bottom = disc ? area.y - area.radius : area.y;
+        const double top = disc ? area.y + area.radius : area.y + area.height;
+        const double near_reach = reach + wall_margin;
+        if (lens.x + near_reach >= left && lens.x - near_reach <= right &&
+            lens.y + near_reach >= bottom && lens.y - near_reach <= top) {
+            areas_within_reach = true;
+            break;
+        }
+    }
     const PixelRays &rays = pixel_rays();
     for (unsigned pixel = 0; pixel < camera_row_pixels; pixel += pixel_step) {
         // The pixel's ray turned by the robot's heading.
@@ -1190,9 +1221,13 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
                 floor = false;
             }
         }
-        pixels[pixel] =
-          floor ? arena_.ground_color(lens.x + reach * direction.x, lens.y + reach * direction.y)
-                : color;
+        if (!floor)
+            pixels[pixel] = color;
+        else if (areas_within_reach)
+            pixels[pixel] =
+              arena_.ground_color(lens.x + reach * direction.x, lens.y + reach * direction.y);
+        else
+            pixels[pixel] = arena_.floor_color;
     }
 }
 

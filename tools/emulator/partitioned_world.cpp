@@ -97,8 +97,18 @@ void PartitionedWorld::take_objects()
     }
     // Cells about as wide as the longest reach: a query looks at a few.
     cell_size_ = std::max({ longest_range, 2 * collision_margin, 1.0 });
-    query_.last_seen.assign(objects_.size(), 0);
-    query_.visit = 0;
+    // An object no wider than a cell goes in the cell of its centre alone
+    // (a query widens its cells by the largest such radius, and meets each
+    // object once); a wider one (a large obstacle) is met by every query.
+    grid_radius_ = 0;
+    large_objects_.clear();
+    for (size_t i = 0; i < objects_.size(); i++) {
+        const double radius = objects_[i]->getRadius();
+        if (radius > cell_size_)
+            large_objects_.push_back(uint32_t(i));
+        else
+            grid_radius_ = std::max(grid_radius_, radius);
+    }
 }
 
 void PartitionedWorld::build_grid()
@@ -107,35 +117,28 @@ void PartitionedWorld::build_grid()
     // cell.
     columns_ = std::max(1L, long(std::ceil(w / cell_size_)));
     rows_ = std::max(1L, long(std::ceil(h / cell_size_)));
-    auto cell_range = [this](double low, double high, long count, long &first, long &last) {
-        first = std::clamp(long(std::floor(low / cell_size_)), 0L, count - 1);
-        last = std::clamp(long(std::floor(high / cell_size_)), 0L, count - 1);
-    };
-    // Counting sort of (cell, object) by cell, objects ascending within.
+    // Counting sort of the objects by the cell of their centre, ascending
+    // within a cell.
     cell_starts_.assign(size_t(columns_ * rows_) + 1, 0);
-    for (int pass = 0; pass < 2; pass++) {
-        if (pass == 1) {
-            for (size_t c = 1; c < cell_starts_.size(); c++)
-                cell_starts_[c] += cell_starts_[c - 1];
-            cell_objects_.resize(cell_starts_.back());
-            cell_fill_.assign(cell_starts_.begin(), cell_starts_.end() - 1);
+    object_cells_.resize(objects_.size());
+    for (size_t i = 0; i < objects_.size(); i++) {
+        const Enki::PhysicalObject *object = objects_[i];
+        if (object->getRadius() > cell_size_) {
+            object_cells_[i] = UINT32_MAX;
+            continue;
         }
-        for (size_t i = 0; i < objects_.size(); i++) {
-            const Enki::PhysicalObject *object = objects_[i];
-            double radius = object->getRadius();
-            long x0, x1, y0, y1;
-            cell_range(object->pos.x - radius, object->pos.x + radius, columns_, x0, x1);
-            cell_range(object->pos.y - radius, object->pos.y + radius, rows_, y0, y1);
-            for (long y = y0; y <= y1; y++)
-                for (long x = x0; x <= x1; x++) {
-                    size_t cell = size_t(y * columns_ + x);
-                    if (pass == 0)
-                        cell_starts_[cell + 1]++;
-                    else
-                        cell_objects_[cell_fill_[cell]++] = uint32_t(i);
-                }
-        }
+        const size_t cell =
+          size_t(cell_of(object->pos.y, rows_) * columns_ + cell_of(object->pos.x, columns_));
+        object_cells_[i] = uint32_t(cell);
+        cell_starts_[cell + 1]++;
     }
+    for (size_t c = 1; c < cell_starts_.size(); c++)
+        cell_starts_[c] += cell_starts_[c - 1];
+    cell_objects_.resize(cell_starts_.back());
+    cell_fill_.assign(cell_starts_.begin(), cell_starts_.end() - 1);
+    for (size_t i = 0; i < objects_.size(); i++)
+        if (object_cells_[i] != UINT32_MAX)
+            cell_objects_[cell_fill_[object_cells_[i]]++] = uint32_t(i);
 }
 
 void PartitionedWorld::objects_near(size_t index, double reach, Query &query) const
@@ -143,28 +146,30 @@ void PartitionedWorld::objects_near(size_t index, double reach, Query &query) co
     std::vector<uint32_t> &found = query.found;
     found.clear();
     const Enki::PhysicalObject *object = objects_[index];
-    double around = object->getRadius() + reach;
-    long x0 = std::clamp(long(std::floor((object->pos.x - around) / cell_size_)), 0L, columns_ - 1);
-    long x1 = std::clamp(long(std::floor((object->pos.x + around) / cell_size_)), 0L, columns_ - 1);
-    long y0 = std::clamp(long(std::floor((object->pos.y - around) / cell_size_)), 0L, rows_ - 1);
-    long y1 = std::clamp(long(std::floor((object->pos.y + around) / cell_size_)), 0L, rows_ - 1);
-    if (query.last_seen.size() != objects_.size() || ++query.visit == 0) {
-        query.last_seen.assign(objects_.size(), 0);
-        query.visit = 1;
-    }
+    const double around = object->getRadius() + reach;
+    // An object within reach has its centre within around + its radius; the
+    // margin is far wider than the rounding of the cells' bounds.
+    constexpr double margin = 1e-6;
+    const double search = around + grid_radius_ + margin;
+    const long x0 = cell_of(object->pos.x - search, columns_);
+    const long x1 = cell_of(object->pos.x + search, columns_);
+    const long y0 = cell_of(object->pos.y - search, rows_);
+    const long y1 = cell_of(object->pos.y + search, rows_);
+    auto meet = [&](uint32_t other) {
+        const double within = around + objects_[other]->getRadius();
+        if ((objects_[other]->pos - object->pos).norm2() <= within * within)
+            found.push_back(other);
+    };
     for (long y = y0; y <= y1; y++)
         for (long x = x0; x <= x1; x++) {
-            size_t cell = size_t(y * columns_ + x);
-            for (uint32_t k = cell_starts_[cell]; k < cell_starts_[cell + 1]; k++) {
-                uint32_t other = cell_objects_[k];
-                if (other == index || query.last_seen[other] == query.visit)
-                    continue;
-                query.last_seen[other] = query.visit;
-                double within = around + objects_[other]->getRadius();
-                if ((objects_[other]->pos - object->pos).norm2() <= within * within)
-                    found.push_back(other);
-            }
+            const size_t cell = size_t(y * columns_ + x);
+            for (uint32_t k = cell_starts_[cell]; k < cell_starts_[cell + 1]; k++)
+                if (cell_objects_[k] != index)
+                    meet(cell_objects_[k]);
         }
+    for (uint32_t other : large_objects_)
+        if (other != index)
+            meet(other);
     std::sort(found.begin(), found.end());
 }
 

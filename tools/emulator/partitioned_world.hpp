@@ -26,6 +26,8 @@
 
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -63,18 +65,21 @@ class PartitionedWorld : public Enki::World
 
   private:
     // What a neighbour query needs besides the grid, one per thread that
-    // queries: the objects found, and which objects the query has met.
+    // queries: the objects found.
     struct Query {
         std::vector<uint32_t> found;
-        std::vector<uint32_t> last_seen;
-        uint32_t visit = 0;
     };
 
     // The objects in Enki's order, each with how far its sensors reach (0:
     // none; negative: unknown, so it meets every object).
     void take_objects();
-    // Buckets the objects' bounding circles into square cells.
+    // Buckets the objects no wider than a cell by the cell of their centre.
     void build_grid();
+    // The cell (0..count - 1) of a coordinate, clamped to the border cells.
+    long cell_of(double at, long count) const
+    {
+        return std::clamp(long(std::floor(at / cell_size_)), 0L, count - 1);
+    }
     // The objects (indices, ascending) whose bounding circles come within
     // `reach` of the circle of object `index`, into `query.found`.
     void objects_near(size_t index, double reach, Query &query) const;
@@ -93,8 +98,11 @@ class PartitionedWorld : public Enki::World
     // .. cell_starts_[c + 1]).
     std::vector<uint32_t> cell_starts_;
     std::vector<uint32_t> cell_objects_;
-    std::vector<uint32_t> cell_fill_; // where the next object of each cell goes
-    Query query_;                     // the calling thread's
+    std::vector<uint32_t> cell_fill_;     // where the next object of each cell goes
+    std::vector<uint32_t> object_cells_;  // each object's cell (UINT32_MAX: none)
+    std::vector<uint32_t> large_objects_; // wider than a cell: outside the grid
+    double grid_radius_ = 0;              // the largest radius in the grid
+    Query query_;                         // the calling thread's
     ParallelFor parallel_for_;
     uint64_t margin_overruns_ = 0;
 };

@@ -140,20 +140,20 @@ void epuck_microphones_read(epuck_microphones *microphones, int16_t *volume)
 bool epuck_microphones_take_recording(epuck_microphones *microphones,
                                       int16_t *const recordings[EPUCK_MICROPHONE_COUNT])
 {
-    hal_critical_state state = hal_critical_enter(microphones->board);
-    bool full = microphones->recording_full;
+    hal_critical_state state;
     uint8_t i;
     uint16_t n;
 
-    if (full) {
-        for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
-            for (n = 0; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++)
-                recordings[i][n] = (int16_t)microphones->recording[i][n];
-        microphones->recording_full = false;
-    }
-    hal_critical_leave(microphones->board, state);
-    if (!full)
+    // Only the scan's interrupt sets the flag, only this clears it (as in
+    // epuck_rc5_take): the critical section only once a recording waits.
+    if (!microphones->recording_full)
         return false;
+    state = hal_critical_enter(microphones->board);
+    for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++)
+        for (n = 0; n < EPUCK_MICROPHONE_RECORD_SAMPLES; n++)
+            recordings[i][n] = (int16_t)microphones->recording[i][n];
+    microphones->recording_full = false;
+    hal_critical_leave(microphones->board, state);
     // Readings are 12-bit, so 32 of them sum well within 32 bits.
     for (i = 0; i < EPUCK_MICROPHONE_COUNT; i++) {
         int32_t sum = 0;

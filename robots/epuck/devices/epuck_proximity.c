@@ -81,7 +81,6 @@ bool epuck_proximity_calibrated(epuck_proximity *proximity)
 bool epuck_proximity_take(epuck_proximity *proximity, int16_t *prox, int16_t *ambient)
 {
     hal_critical_state state;
-    bool fresh;
     uint8_t i;
 
     // The sums no longer change once the calibration is over.
@@ -91,17 +90,17 @@ bool epuck_proximity_take(epuck_proximity *proximity, int16_t *prox, int16_t *am
               (int16_t)(proximity->calibration_sum[i] / (int32_t)EPUCK_PROXIMITY_CALIBRATION_SETS);
         proximity->offsets_set = true;
     }
+    // Only the scan's interrupt sets the flag, only this clears it (as in
+    // epuck_rc5_take): the critical section only once a set waits.
+    if (!proximity->fresh)
+        return false;
     state = hal_critical_enter(proximity->board);
-    fresh = proximity->fresh;
-
-    if (fresh) {
-        for (i = 0; i < EPUCK_PROXIMITY_COUNT; i++) {
-            int32_t value = (int32_t)proximity->reflected[i] - proximity->offset[i];
-            prox[i] = (int16_t)(value < 0 ? 0 : value);
-            ambient[i] = (int16_t)proximity->ambient_reading[i];
-        }
-        proximity->fresh = false;
+    for (i = 0; i < EPUCK_PROXIMITY_COUNT; i++) {
+        int32_t value = (int32_t)proximity->reflected[i] - proximity->offset[i];
+        prox[i] = (int16_t)(value < 0 ? 0 : value);
+        ambient[i] = (int16_t)proximity->ambient_reading[i];
     }
+    proximity->fresh = false;
     hal_critical_leave(proximity->board, state);
-    return fresh;
+    return true;
 }

@@ -83,15 +83,19 @@ bool epuck_rc5_init(epuck_rc5 *rc5, hal_board *board)
 
 bool epuck_rc5_take(epuck_rc5 *rc5, uint8_t *toggle, uint8_t *address, uint8_t *command)
 {
-    hal_critical_state state = hal_critical_enter(rc5->board);
-    bool received = rc5->received;
+    hal_critical_state state;
 
-    if (received) {
-        *toggle = rc5->toggle;
-        *address = rc5->address;
-        *command = rc5->command;
-        rc5->received = false;
-    }
+    // Only the interrupt sets the flag, only this clears it: read clear
+    // outside the critical section, it is as if the frame came just after;
+    // read set, it stays set. The main loop (every millisecond) is spared
+    // the section until a frame waits.
+    if (!rc5->received)
+        return false;
+    state = hal_critical_enter(rc5->board);
+    *toggle = rc5->toggle;
+    *address = rc5->address;
+    *command = rc5->command;
+    rc5->received = false;
     hal_critical_leave(rc5->board, state);
-    return received;
+    return true;
 }
