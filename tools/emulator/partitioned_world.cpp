@@ -88,12 +88,10 @@ void PartitionedWorld::take_objects()
 {
     objects_.assign(objects.begin(), objects.end());
     sensing_ranges_.resize(objects_.size());
-    largest_radius_ = 0;
     double longest_range = 0;
     for (size_t i = 0; i < objects_.size(); i++) {
         sensing_ranges_[i] = sensing_range(objects_[i]);
         longest_range = std::max(longest_range, sensing_ranges_[i]);
-        largest_radius_ = std::max(largest_radius_, objects_[i]->getRadius());
     }
     // Cells about as wide as the longest reach: a query looks at a few.
     cell_size_ = std::max({ longest_range, 2 * collision_margin, 1.0 });

@@ -91,7 +91,6 @@ class PartitionedWorld : public Enki::World
 
     std::vector<Enki::PhysicalObject *> objects_;
     std::vector<double> sensing_ranges_;
-    double largest_radius_ = 0;
     double cell_size_ = 1;
     long columns_ = 1, rows_ = 1;
     // Object indices per cell: cell c holds cell_objects_[cell_starts_[c]
