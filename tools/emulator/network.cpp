@@ -686,11 +686,11 @@ void Network::service(int timeout_ms)
         if (state.io.stopped())
             state.io.restart();
         // Waits for the first event if asked to (unless a client has just
-        // been heard), then handles what is ready. A wait ended by a
-        // client's bytes skips that look: the robots answer them first, and
-        // the look would cost a system call each time a lone client is
-        // answered (the next call sees what else came). A connection may
-        // come with many others: those are all taken at once.
+        // been heard), then handles what is ready. A wait ended by an event
+        // (a client's bytes, most often) skips that look: the robots answer
+        // first, and the look would cost a system call each time a lone
+        // client is answered (the next call sees what else came). A
+        // connection may come with many others: those are all taken at once.
         state.accepted = false;
         bool answer_first = timeout_ms > 0 && !heard &&
                             state.io.run_one_for(std::chrono::milliseconds(timeout_ms)) > 0 &&
