@@ -101,12 +101,16 @@ void PartitionedWorld::take_objects()
     grid_radius_ = 0;
     large_objects_.clear();
     for (size_t i = 0; i < objects_.size(); i++) {
-        const double radius = objects_[i]->getRadius();
-        if (radius > cell_size_)
+        if (outside_grid(i))
             large_objects_.push_back(uint32_t(i));
         else
-            grid_radius_ = std::max(grid_radius_, radius);
+            grid_radius_ = std::max(grid_radius_, objects_[i]->getRadius());
     }
+}
+
+bool PartitionedWorld::outside_grid(size_t index) const
+{
+    return objects_[index]->getRadius() > cell_size_;
 }
 
 void PartitionedWorld::build_grid()
@@ -121,7 +125,7 @@ void PartitionedWorld::build_grid()
     object_cells_.resize(objects_.size());
     for (size_t i = 0; i < objects_.size(); i++) {
         const Enki::PhysicalObject *object = objects_[i];
-        if (object->getRadius() > cell_size_) {
+        if (outside_grid(i)) {
             object_cells_[i] = UINT32_MAX;
             continue;
         }

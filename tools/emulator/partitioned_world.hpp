@@ -73,6 +73,9 @@ class PartitionedWorld : public Enki::World
     // The objects in Enki's order, each with how far its sensors reach (0:
     // none; negative: unknown, so it meets every object).
     void take_objects();
+    // Whether the object is wider than a cell: every query meets it, the
+    // grid does not hold it.
+    bool outside_grid(size_t index) const;
     // Buckets the objects no wider than a cell by the cell of their centre.
     void build_grid();
     // The cell (0..count - 1) of a coordinate, clamped to the border cells.
