@@ -396,22 +396,35 @@ test("a huge paste gets a clear error and the connection stays", TIMEOUT, async 
     await waitFor(async () => (await compileStatus()).kind === "ok", "the script to compile again");
 });
 
-test("20 tabs at once are all served", { timeout: 60000 }, async () => {
+// A stress test: 21 pages on a machine that CI shares with two other test
+// programs. Its waits are long, and its tabs close whatever happens, so
+// that a failure here is reported here and not again by the tests after it
+// (the tabs would otherwise stay connected and answer the server too).
+test("20 tabs at once are all served", { timeout: 150000 }, async () => {
     const context = await browser.newContext({ viewport: { width: 1024, height: 700 } });
-    const pages = await Promise.all(Array.from({ length: 20 }, () => context.newPage()));
-    await Promise.all(pages.map((tab) => tab.goto(ide.url)));
-    await Promise.all(
-        pages.map((tab) => waitFor(async () => (await tab.locator(".robot-tab").count()) === 3 && (await tab.locator('[data-testid="page-connection"]').getAttribute("data-state")) === "open", "a tab to connect", 40000)),
-    );
-    // Each still compiles.
-    const last = pages[pages.length - 1];
-    await setEditorText(last, PROGRAM.replace("STEP", "undefinedThing"));
-    await waitFor(async () => (await compileStatus(last)).kind === "error", "the 20th tab to compile");
-    await setEditorText(last, PROGRAM);
-    await waitFor(async () => (await compileStatus(last)).kind === "ok", "the 20th tab to compile again");
-    // The first tab follows: the last text wins everywhere.
-    await waitFor(async () => (await editorText(page)) === PROGRAM, "the first tab to show the 20th tab's last text");
-    await context.close();
+    const errorsBefore = page.errors.length;
+    try {
+        const pages = await Promise.all(Array.from({ length: 20 }, () => context.newPage()));
+        for (const tab of pages) {
+            tab.errors = [];
+            tab.on("pageerror", (error) => tab.errors.push(error.message));
+        }
+        await Promise.all(pages.map((tab) => tab.goto(ide.url)));
+        await Promise.all(
+            pages.map((tab) => waitFor(async () => (await tab.locator(".robot-tab").count()) === 3 && (await tab.locator('[data-testid="page-connection"]').getAttribute("data-state")) === "open", "a tab to connect", 40000)),
+        );
+        // Each still compiles.
+        const last = pages[pages.length - 1];
+        await setEditorText(last, PROGRAM.replace("STEP", "undefinedThing"));
+        await waitFor(async () => (await compileStatus(last)).kind === "error", "the 20th tab to compile", 30000);
+        await setEditorText(last, PROGRAM);
+        await waitFor(async () => (await compileStatus(last)).kind === "ok", "the 20th tab to compile again", 30000);
+        // The first tab follows: the last text wins everywhere.
+        await waitFor(async () => (await editorText(page)) === PROGRAM, "the first tab to show the 20th tab's last text", 30000);
+        assert.deepEqual([...page.errors.slice(errorsBefore), ...pages.flatMap((tab) => tab.errors)], []);
+    } finally {
+        await context.close();
+    }
 });
 
 test("the saved project is what asebamassloader loads", TIMEOUT, async () => {
@@ -455,6 +468,7 @@ test("the saved project is what asebamassloader loads", TIMEOUT, async () => {
 });
 
 test("the page reconnects to a restarted emulator with its text intact", { timeout: 45000 }, async () => {
+    const errorsBefore = page.errors.length;
     await selectRobot(page, "0:1");
     const port = emulator.port;
     await emulator.stop();
@@ -469,10 +483,11 @@ test("the page reconnects to a restarted emulator with its text intact", { timeo
     await waitFor(async () => (await page.locator(".robot-tab.offline").count()) === 0, "the robots to come back", 20000);
     assert.equal(await editorText(page), offlineText);
     await waitFor(async () => (await compileStatus()).kind === "ok", "the text to compile on the robot that came back");
-    assert.deepEqual(page.errors, []);
+    assert.deepEqual(page.errors.slice(errorsBefore), []);
 });
 
 test("the page reconnects to a restarted IDE server and gives it back its text", { timeout: 45000 }, async () => {
+    const errorsBefore = page.errors.length;
     const port = ide.port;
     await ide.stop();
     await page.locator('[data-testid="page-connection"][data-state="waiting"]').waitFor();
@@ -491,7 +506,7 @@ test("the page reconnects to a restarted IDE server and gives it back its text",
     await fresh.locator('.bottom-tab[data-pane="constants"]').click();
     await fresh.locator('.definitions-constants .definition-row[data-name="STEP"]').waitFor();
     await fresh.context().close();
-    assert.deepEqual(page.errors, []);
+    assert.deepEqual(page.errors.slice(errorsBefore), []);
 });
 
 test("a hundred robots: each in the network view and in a tab, found by the filter, stopped and run as a group", { timeout: 120000 }, async () => {
