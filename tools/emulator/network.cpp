@@ -180,7 +180,7 @@ struct Client : std::enable_shared_from_this<Client> {
     connections::Clock::time_point heard; // when it last sent something
     FrameReader reader;
     std::array<uint8_t, read_chunk> input{};
-    bool read_queued = false; // in reads_queued: read at the end of this service()
+    bool read_queued = false; // in reads_queued: read at the next look at the sockets
     bool waiting = false;     // empty at the last read: read when its socket has bytes
     bool read_again = false;  // sent at the last read: read at the next service()
     size_t full_queues = 0;   // boards where this client has its share waiting
@@ -329,8 +329,8 @@ struct Network::State final : Bus {
     }
 
     // Reads the client again (a new one, or one whose queues had filled):
-    // bytes may have come meanwhile, so read before waiting, at the end of
-    // this service() (the other clients get their turn first).
+    // bytes may have come meanwhile, so read before waiting, at the next
+    // look at the sockets (the other clients get their turn first).
     void start_read(const std::shared_ptr<Client> &client)
     {
         if (client->closed || client->read_queued || client->full_queues > 0)
