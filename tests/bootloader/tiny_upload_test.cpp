@@ -280,10 +280,15 @@ TEST_P(TinyUploadPowerCut, ASecondInstallationSucceedsUnlessTheCutHitRow0sErase)
     {
         auto link = aseba::flash::open_tiny_serial_link(robot.device());
         aseba::flash::TinyUploadSettings settings;
-        settings.handshake_timeout = milliseconds(1000);
+        settings.handshake_timeout = milliseconds(3000);
+        // One hello: the simulated robot is in Tiny from the start. A second
+        // one, sent while a loaded machine keeps the simulator from
+        // answering the first, reaches Tiny as the first byte of row 1, which
+        // then gets no reply (as CI once saw) or a bad checksum.
+        settings.hello_interval = settings.handshake_timeout;
         // Short, so that the cut is noticed soon, yet long enough for a
         // loaded machine running tests side by side.
-        settings.reply_timeout = milliseconds(1000);
+        settings.reply_timeout = milliseconds(3000);
         auto packets = aseba::flash::tiny_bootloader_packets(factory_image(), robot_number);
         try {
             aseba::flash::tiny_upload(*link, packets, settings);
