@@ -12,8 +12,6 @@ typedef char
 
 void robot_start(robot_devices *robot, hal_board *board)
 {
-    // The analog scan's first second and a half calibrates the proximity
-    // sensors and the accelerometer (hardware §6.6).
     uint16_t led;
 
     // The actuators start off, as zeros in the variables ask.
@@ -27,6 +25,8 @@ void robot_start(robot_devices *robot, hal_board *board)
     epuck_proximity_init(&robot->proximity, board);
     epuck_accelerometer_init(&robot->accelerometer, board);
     epuck_microphones_init(&robot->microphones, board);
+    // The analog scan's first second and a half calibrates the proximity
+    // sensors and the accelerometer (hardware §6.6).
     epuck_analog_start(
       &robot->analog, board, &robot->proximity, &robot->accelerometer, &robot->microphones);
     epuck_camera_init(&robot->camera, board);
