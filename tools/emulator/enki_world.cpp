@@ -1182,6 +1182,7 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
     // vectors to about 1e-16): when no coloured area's square comes that near,
     // every floor point is bare floor, as Arena::ground_color would find one
     // by one (the margin is far wider than the rounding).
+    const double near_reach = reach + wall_margin;
     bool areas_within_reach = false;
     for (const GroundArea &area : arena_.areas) {
         const bool disc = area.shape == GroundArea::Shape::disc;
@@ -1189,7 +1190,6 @@ void EnkiWorld::camera_row(size_t index, unsigned row, Color *pixels, unsigned p
         const double right = disc ? area.x + area.radius : area.x + area.width;
         const double bottom = disc ? area.y - area.radius : area.y;
         const double top = disc ? area.y + area.radius : area.y + area.height;
-        const double near_reach = reach + wall_margin;
         if (lens.x + near_reach >= left && lens.x - near_reach <= right &&
             lens.y + near_reach >= bottom && lens.y - near_reach <= top) {
             areas_within_reach = true;
