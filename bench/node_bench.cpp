@@ -3,12 +3,18 @@
 //
 //   bench-node emu [EVENTS]        epuck-emu with one robot (our node and firmware)
 //   bench-node reference [EVENTS]  Debian's asebadummynode (the reference node library)
+//   bench-node at-once [EVENTS]    a node that answers at once: this client's ceiling
 //       prints: median round trip of GET_VARIABLES -> VARIABLES in us, the
 //       mean in us, user events per second through a handler that answers
 //       each `ping` with a `pong` (EVENTS of them, 20,000 unless given, at
 //       least `event_window`; at most `event_window` in flight).
 //       BENCH_NODE_UNDER: a command the node runs under (its words split at
 //       spaces), for example valgrind's, to count the node's instructions.
+//
+//   bench-node serve-at-once PORT
+//       the node of `at-once`: this program answering on PORT, GET_VARIABLES
+//       with VARIABLES of zeros and each `ping` with a `pong`, with nothing
+//       between its socket and the answer (no VM, no queue, no sleep).
 //
 //   bench-node simulator ROBOTS SECONDS
 //       runs epuck-emu with ROBOTS robots running the paper's controller for
@@ -55,8 +61,9 @@ constexpr const char *reference_node_path = "asebadummynode";
 constexpr const char *paper_annex_project = "examples/paper-annex.aesl";
 constexpr const char *emulator_lifetime_seconds = "120"; // a safety net; we stop it sooner
 constexpr auto start_timeout = std::chrono::milliseconds(5000);
-constexpr auto answer_timeout_ms = 2000;
-constexpr uint16_t node_id = 1; // robot 1 of epuck-emu; dummynode-0 is node 1
+constexpr auto answer_timeout = std::chrono::milliseconds(2000);
+constexpr long reads_between_clock_looks = 1024; // the spinning read's look at its timeout
+constexpr uint16_t node_id = 1;                  // robot 1 of epuck-emu; dummynode-0 is node 1
 constexpr uint16_t ping_event = 0;
 constexpr uint16_t pong_event = 1;
 constexpr int latency_rounds = 2000;
@@ -83,11 +90,6 @@ class Connection
             throw std::runtime_error("cannot connect to port " + std::to_string(port));
         int on = 1;
         setsockopt(socket_, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
-        // A read waits at most the timeout: recv alone, no poll before it
-        // (a system call less for each read, the client's share of the
-        // time an event takes).
-        timeval timeout{ answer_timeout_ms / 1000, (answer_timeout_ms % 1000) * 1000 };
-        setsockopt(socket_, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof timeout);
     }
     ~Connection()
     {
@@ -142,12 +144,22 @@ class Connection
 
   private:
     // Reads what has come (waiting for it up to the timeout) into the frames.
+    // The client spins on a read that does not block instead of sleeping in
+    // one: woken from a blocking read, it was itself the limit (a node that
+    // answers at once, `at-once`, ran no faster than epuck-emu), and the
+    // figure measured the client rather than the nodes.
     void read_more(uint16_t type)
     {
         uint8_t buffer[4096];
-        ssize_t count = ::recv(socket_, buffer, sizeof buffer, 0);
-        if (count < 0 && (errno == EAGAIN || errno == EWOULDBLOCK))
-            throw std::runtime_error("no answer of type " + std::to_string(type));
+        const auto deadline = Clock::now() + answer_timeout;
+        ssize_t count;
+        for (long reads = 1;; reads++) {
+            count = ::recv(socket_, buffer, sizeof buffer, MSG_DONTWAIT);
+            if (count >= 0 || (errno != EAGAIN && errno != EWOULDBLOCK))
+                break;
+            if (reads % reads_between_clock_looks == 0 && Clock::now() > deadline)
+                throw std::runtime_error("no answer of type " + std::to_string(type));
+        }
         if (count <= 0)
             throw std::runtime_error("the node closed the connection");
         frames_.feed(buffer, static_cast<size_t>(count));
@@ -174,18 +186,32 @@ const std::vector<std::string> &wrapper_words()
     return words;
 }
 
+// This program's own path, to start it again as the node that answers at once.
+std::string this_program()
+{
+    char path[4096];
+    ssize_t length = ::readlink("/proc/self/exe", path, sizeof path - 1);
+    if (length <= 0)
+        throw std::runtime_error("cannot find this program's path");
+    return std::string(path, static_cast<size_t>(length));
+}
+
+enum class NodeKind { Ours, Reference, AtOnce };
+
 // The node process, started on a free port, stopped when this ends.
 struct NodeProcess {
     interop::ScratchFolder scratch;
     uint16_t port = 0;
     std::unique_ptr<interop::ChildProcess> process;
 
-    explicit NodeProcess(bool reference, unsigned robots = 1, const char *load = nullptr)
+    explicit NodeProcess(NodeKind kind, unsigned robots = 1, const char *load = nullptr)
     {
         port = interop::find_free_port();
         std::vector<std::string> argv;
-        if (reference)
+        if (kind == NodeKind::Reference)
             argv = { reference_node_path, "-p", std::to_string(port), "0" };
+        else if (kind == NodeKind::AtOnce)
+            argv = { this_program(), "serve-at-once", std::to_string(port) };
         else {
             argv = { emulator_path,          "--port",     std::to_string(port),      "--robots",
                      std::to_string(robots), "--duration", emulator_lifetime_seconds, "--quiet" };
@@ -193,7 +219,7 @@ struct NodeProcess {
                 argv.insert(argv.end(), { "--load", load });
         }
         argv.insert(argv.begin(), wrapper_words().begin(), wrapper_words().end());
-        if (reference) {
+        if (kind == NodeKind::Reference) {
             // A probe connection would make asebadummynode deaf once it
             // closes: wait for the line it prints when it listens instead.
             process = std::make_unique<interop::ChildProcess>(
@@ -234,9 +260,9 @@ void load_ping_pong(Connection &connection, const aseba::TargetDescription &targ
     connection.send(NODE_MSG_RUN, { node_id });
 }
 
-int bench_node(bool reference, int event_count)
+int bench_node(NodeKind kind, int event_count)
 {
-    NodeProcess node(reference);
+    NodeProcess node(kind);
     Connection connection(node.port);
 
     std::vector<double> round_trips_us;
@@ -253,7 +279,8 @@ int bench_node(bool reference, int event_count)
     for (double value : round_trips_us)
         mean_us += value / static_cast<double>(round_trips_us.size());
 
-    load_ping_pong(connection, reference ? aseba::dummy_target() : aseba::epuck_target());
+    load_ping_pong(connection,
+                   kind == NodeKind::Reference ? aseba::dummy_target() : aseba::epuck_target());
     int sent = 0;
     auto begin = Clock::now();
     // As many pings in flight as the window, the ones answered since the
@@ -290,7 +317,7 @@ int bench_simulator(unsigned robots, double seconds)
     double cpu_before = children_cpu_seconds();
     auto begin = Clock::now();
     {
-        NodeProcess node(false, robots, paper_annex_project);
+        NodeProcess node(NodeKind::Ours, robots, paper_annex_project);
         while (std::chrono::duration<double>(Clock::now() - begin).count() < seconds)
             usleep(10000);
         node.process->stop(); // reaped: its CPU time now counts
@@ -301,18 +328,87 @@ int bench_simulator(unsigned robots, double seconds)
     return 0;
 }
 
+// The node of `at-once`: serves one client after another on `port` (the
+// start-up's probe, then the bench's client), spinning on its socket.
+int serve_at_once(uint16_t port)
+{
+    int listener = ::socket(AF_INET, SOCK_STREAM, 0);
+    int on = 1;
+    setsockopt(listener, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(port);
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (listener < 0 ||
+        ::bind(listener, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0 ||
+        ::listen(listener, 4) != 0)
+        throw std::runtime_error("cannot listen on port " + std::to_string(port));
+    constexpr size_t header_bytes = 6; // length, source, type: a word each
+    const std::vector<uint8_t> pong = aseba::client::serialize_frame({ node_id, pong_event, {} });
+    for (;;) {
+        int client = ::accept(listener, nullptr, nullptr);
+        if (client < 0)
+            continue;
+        setsockopt(client, IPPROTO_TCP, TCP_NODELAY, &on, sizeof on);
+        std::vector<uint8_t> received, answers;
+        uint8_t buffer[4096];
+        for (;;) {
+            ssize_t count = ::recv(client, buffer, sizeof buffer, MSG_DONTWAIT);
+            if (count == 0 || (count < 0 && errno != EAGAIN && errno != EWOULDBLOCK))
+                break;
+            if (count < 0)
+                continue;
+            received.insert(received.end(), buffer, buffer + count);
+            size_t start = 0;
+            answers.clear();
+            auto word_at = [&](size_t at) {
+                return static_cast<uint16_t>(received[at] | received[at + 1] << 8);
+            };
+            while (received.size() - start >= header_bytes &&
+                   received.size() - start >= header_bytes + word_at(start)) {
+                uint16_t type = word_at(start + 4);
+                if (type == ping_event)
+                    answers.insert(answers.end(), pong.begin(), pong.end());
+                if (type == NODE_MSG_GET_VARIABLES && word_at(start) >= 6) {
+                    // VARIABLES: the first address asked (the payload's
+                    // second word), then as many zero words as asked (its third).
+                    Frame variables{ node_id, NODE_MSG_VARIABLES, {} };
+                    variables.payload.assign(2 + 2 * word_at(start + header_bytes + 4), 0);
+                    variables.payload[0] = received[start + header_bytes + 2];
+                    variables.payload[1] = received[start + header_bytes + 3];
+                    std::vector<uint8_t> bytes = aseba::client::serialize_frame(variables);
+                    answers.insert(answers.end(), bytes.begin(), bytes.end());
+                }
+                start += header_bytes + word_at(start);
+            }
+            received.erase(received.begin(), received.begin() + static_cast<long>(start));
+            if (!answers.empty())
+                ::send(client, answers.data(), answers.size(), MSG_NOSIGNAL);
+        }
+        ::close(client);
+    }
+}
+
 } // namespace
 
 int main(int argc, char **argv)
 try {
     std::string mode = argc > 1 ? argv[1] : "";
     int events = argc > 2 ? std::atoi(argv[2]) : default_event_count;
-    if ((mode == "emu" || mode == "reference") && argc <= 3 && events >= event_window)
-        return bench_node(mode == "reference", events);
+    if ((mode == "emu" || mode == "reference" || mode == "at-once") && argc <= 3 &&
+        events >= event_window)
+        return bench_node(mode == "emu"         ? NodeKind::Ours
+                          : mode == "reference" ? NodeKind::Reference
+                                                : NodeKind::AtOnce,
+                          events);
+    if (mode == "serve-at-once" && argc == 3)
+        return serve_at_once(static_cast<uint16_t>(std::atoi(argv[2])));
     if (mode == "simulator" && argc == 4)
         return bench_simulator(static_cast<unsigned>(std::atoi(argv[2])), std::atof(argv[3]));
     std::fprintf(
-      stderr, "usage: bench-node emu|reference [EVENTS]  |  bench-node simulator ROBOTS SECONDS\n");
+      stderr,
+      "usage: bench-node emu|reference|at-once [EVENTS]  |  bench-node simulator ROBOTS SECONDS\n"
+      "       bench-node serve-at-once PORT\n");
     return 2;
 } catch (const std::exception &error) {
     std::fprintf(stderr, "bench-node: %s\n", error.what());
