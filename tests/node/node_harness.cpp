@@ -309,7 +309,7 @@ void Harness::send(void *context, const uint8_t *bytes, uint16_t count, bool fra
 {
     auto *self = static_cast<Harness *>(context);
     if (count > NODE_TRANSMIT_CHUNK)
-        self->bad.push_back("a piece larger than the transmit chunk");
+        self->bad.emplace_back("a piece larger than the transmit chunk");
     self->partial_.insert(self->partial_.end(), bytes, bytes + count);
     if (!frame_complete)
         return;
