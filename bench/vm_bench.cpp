@@ -6,7 +6,8 @@
 //   bench-vm steps VM       counts the steps of one run, one vm_step at a time,
 //                           and checks that both VMs end with equal variables
 //   bench-vm once VM        one run of the workload; callgrind measures it with
-//                           --toggle-collect=vm_run or AsebaVMRun
+//                           --toggle-collect=vm_run (and vm_run.*, the link-time
+//                           optimiser's copies) or AsebaVMRun
 //   bench-vm time VM RUNS   wall-clock ns per run of the workload (best of RUNS)
 //   bench-vm checksum VM    a checksum of the variables after one run of `go`
 //   bench-vm header         the workload's bytecode and memory sizes as a C
