@@ -74,17 +74,24 @@ constexpr int event_window = 16;
 constexpr size_t bytecode_chunk_words = 256;
 constexpr const char *ping_pong_program = "onevent ping\nemit pong\n";
 
-// A blocking TCP client of one node, with Nagle and delayed ACK off.
+// Port `port` of this computer's loopback interface.
+sockaddr_in loopback_address(uint16_t port)
+{
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_port = htons(port);
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    return address;
+}
+
+// A TCP client of one node, with Nagle and delayed ACK off.
 class Connection
 {
   public:
     explicit Connection(uint16_t port)
     {
         socket_ = ::socket(AF_INET, SOCK_STREAM, 0);
-        sockaddr_in address{};
-        address.sin_family = AF_INET;
-        address.sin_port = htons(port);
-        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        sockaddr_in address = loopback_address(port);
         if (socket_ < 0 ||
             ::connect(socket_, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0)
             throw std::runtime_error("cannot connect to port " + std::to_string(port));
@@ -335,10 +342,7 @@ int serve_at_once(uint16_t port)
     int listener = ::socket(AF_INET, SOCK_STREAM, 0);
     int on = 1;
     setsockopt(listener, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on);
-    sockaddr_in address{};
-    address.sin_family = AF_INET;
-    address.sin_port = htons(port);
-    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    sockaddr_in address = loopback_address(port);
     if (listener < 0 ||
         ::bind(listener, reinterpret_cast<sockaddr *>(&address), sizeof address) != 0 ||
         ::listen(listener, 4) != 0)
