@@ -192,7 +192,8 @@ done
 echo "bench: node" >&2
 # The median of several runs of each node, interleaved: one run of either
 # moves by a third from one minute to the next on a shared machine (the
-# processes' wake-ups across its two cores), the median much less.
+# spinning client and the node keep both of its cores busy: whatever else
+# runs takes from them), the median much less.
 median_of() { sort -n | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'; }
 node_runs=5
 node_run_events=100000
